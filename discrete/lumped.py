@@ -1,0 +1,248 @@
+"""Lumped linear drives: bodies, drivers, springs, dampers and gear (transmission) constraints.
+
+The textbook's discrete models of §4.4–4.9: each body has one generalised coordinate x
+(displacement or angle) and an inertia a (mass or moment of inertia).  A spring or damper
+between bodies a and b acts on the deformation  r_b x_b - r_a x_a  (``ratios = [r_a, r_b]``,
+e.g. radii of a belt, default 1), so its energy is 0.5 k (r_b x_b - r_a x_a)^2.  ``ground``
+is the fixed frame.  A gear makes one body's coordinate proportional to another's,
+x_b = u x_a (the rigid gear pair of (3.1)); it is eliminated exactly (reduction J u^2, c u^2
+of §2.2).  A driver is a body whose motion is prescribed (held in modal analysis, moved
+in forced analysis).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+
+from .errors import ModelError
+from .linear_system import LinearSystem
+from .schema import check_keys, number
+
+GROUND = "ground"
+
+
+@dataclass
+class Body:
+    name: str
+    inertia: float
+    inertia_rate: float = 0.0
+    reactive: float = 0.0
+    x0: float = 0.0
+    v0: float = 0.0
+
+
+@dataclass
+class Driver:
+    """Prescribed motion x(t) = velocity t + amplitude sin(omega t + phase)."""
+
+    name: str
+    velocity: float | None = None
+    amplitude: float = 0.0
+    omega: float = 0.0
+    phase: float = 0.0
+    inertia: float = 0.0
+
+    def position(self, t):
+        return (self.velocity or 0.0) * t + self.amplitude * np.sin(self.omega * t + self.phase)
+
+    def velocity_at(self, t):
+        return (self.velocity or 0.0) + self.amplitude * self.omega * np.cos(self.omega * t + self.phase)
+
+    def acceleration(self, t):
+        return -self.amplitude * self.omega**2 * np.sin(self.omega * t + self.phase)
+
+
+@dataclass
+class Link:
+    """A spring (``value`` = k) or damper (``value`` = c) acting on r_b x_b - r_a x_a."""
+
+    between: tuple[str, str]
+    value: float
+    ratios: tuple[float, float] = (1.0, 1.0)
+    psi: float = 0.0
+
+
+@dataclass
+class Gear:
+    """Rigid transmission x_b = ratio * x_a."""
+
+    between: tuple[str, str]
+    ratio: float
+
+
+@dataclass
+class LumpedModel:
+    bodies: list[Body]
+    drivers: list[Driver] = field(default_factory=list)
+    springs: list[Link] = field(default_factory=list)
+    dampers: list[Link] = field(default_factory=list)
+    gears: list[Gear] = field(default_factory=list)
+    title: str = ""
+
+    def __post_init__(self):
+        names = [b.name for b in self.bodies] + [d.name for d in self.drivers]
+        seen = set()
+        for i, n in enumerate(names):
+            if n == GROUND or n in seen or not isinstance(n, str) or not n:
+                raise ModelError(f"body/driver #{i + 1}", "name", n,
+                                 "a unique non-empty name other than 'ground'")
+            seen.add(n)
+        for i, b in enumerate(self.bodies, 1):
+            if not b.inertia > 0:
+                raise ModelError(f"[[body]] #{i} ({b.name})", "inertia", b.inertia, "a number > 0 (kg or kg m^2)")
+        allowed = set(names) | {GROUND}
+        for kind, items in (("spring", self.springs), ("damper", self.dampers), ("gear", self.gears)):
+            for i, it in enumerate(items, 1):
+                where = f"[[{kind}]] #{i}"
+                if len(it.between) != 2 or it.between[0] == it.between[1]:
+                    raise ModelError(where, "between", list(it.between), "two different names")
+                for n in it.between:
+                    if n not in allowed:
+                        raise ModelError(where, "between", n, "one of " + ", ".join(map(repr, sorted(allowed))))
+                if kind != "gear" and it.value < 0:
+                    raise ModelError(where, "k" if kind == "spring" else "c", it.value, "a number >= 0")
+        for i, g in enumerate(self.gears, 1):
+            where = f"[[gear]] #{i}"
+            if GROUND in g.between:
+                raise ModelError(where, "between", list(g.between), "two bodies (a gear to ground is a clamp)")
+            if g.between[1] in [d.name for d in self.drivers]:
+                raise ModelError(where, "between", list(g.between),
+                                 "[driving, driven] with the driven one a body (not a driver)")
+            if not g.ratio != 0 or not math.isfinite(g.ratio):
+                raise ModelError(where, "ratio", g.ratio, "a finite non-zero number")
+
+    # ----------------------------------------------------------- coordinates
+    @property
+    def names(self) -> list[str]:
+        return [b.name for b in self.bodies] + [d.name for d in self.drivers]
+
+    def transformation(self) -> tuple[list[str], np.ndarray]:
+        """Independent coordinates and T with x_all = T x_independent (gears eliminated)."""
+        names = self.names
+        idx = {n: i for i, n in enumerate(names)}
+        dependent = {}
+        for i, g in enumerate(self.gears, 1):
+            a, b = g.between
+            if b in dependent:
+                raise ModelError(f"[[gear]] #{i}", "between", list(g.between),
+                                 f"a body driven by one gear only ({b!r} is already driven)")
+            dependent[b] = (a, g.ratio)
+        indep = [n for n in names if n not in dependent]
+        col = {n: j for j, n in enumerate(indep)}
+        T = np.zeros((len(names), len(indep)))
+
+        def row(n, depth=0):
+            if depth > len(names):
+                raise ModelError("[[gear]]", "between", n, "gear chains without loops")
+            if n in col:
+                r = np.zeros(len(indep))
+                r[col[n]] = 1.0
+                return r
+            a, u = dependent[n]
+            return u * row(a, depth + 1)
+
+        for n in names:
+            T[idx[n]] = row(n)
+        return indep, T
+
+    def _link_matrix(self, links: list[Link], use_psi: bool = False) -> np.ndarray:
+        names = self.names
+        idx = {n: i for i, n in enumerate(names)}
+        A = np.zeros((len(names), len(names)))
+        for ln in links:
+            g = np.zeros(len(names))
+            (a, b), (ra, rb) = ln.between, ln.ratios
+            if a != GROUND:
+                g[idx[a]] -= ra
+            if b != GROUND:
+                g[idx[b]] += rb
+            coef = ln.value * (2 * ln.psi / (4 * math.pi) if use_psi else 1.0)
+            A += coef * np.outer(g, g)
+        return A
+
+    def linear_system(self) -> LinearSystem:
+        """The linear system in the independent coordinates; drivers are constrained DOFs."""
+        indep, T = self.transformation()
+        inert = np.array([b.inertia for b in self.bodies] + [d.inertia for d in self.drivers])
+        M = T.T @ np.diag(inert) @ T
+        K = T.T @ self._link_matrix(self.springs) @ T
+        C = T.T @ self._link_matrix(self.dampers) @ T
+        H = T.T @ self._link_matrix(self.springs, use_psi=True) @ T
+        drivers = {d.name for d in self.drivers}
+        constrained = [j for j, n in enumerate(indep) if n in drivers]
+        free = [j for j in range(len(indep)) if j not in set(constrained)]
+        rigid = np.zeros((len(indep), 0))
+        if free:
+            ns = sla.null_space(K[np.ix_(free, free)], rcond=1e-10)
+            rigid = np.zeros((len(indep), ns.shape[1]))
+            rigid[free] = ns
+        return LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), C=sp.csr_matrix(C), H=sp.csr_matrix(H),
+                            dof_field=np.full(len(indep), "x", dtype=object),
+                            dof_name=np.array(indep, dtype=object), constrained=np.array(constrained, dtype=int),
+                            rigid_modes=rigid, title=self.title, physics="lumped")
+
+    def driver(self, name: str) -> Driver:
+        for d in self.drivers:
+            if d.name == name:
+                return d
+        raise KeyError(name)
+
+    # --------------------------------------------------------------- parsing
+    @classmethod
+    def from_dict(cls, doc: dict) -> "LumpedModel":
+        """Build from the ``body``, ``driver``, ``spring``, ``damper`` and ``gear`` tables of a model file."""
+        bodies = []
+        for i, t in enumerate(doc.get("body", []), 1):
+            w = f"[[body]] #{i}"
+            check_keys(t, {"name", "inertia", "inertia_rate", "reactive", "x0", "v0"}, w)
+            bodies.append(Body(name=t.get("name", ""), inertia=number(t.get("inertia"), "inertia", w),
+                               inertia_rate=number(t.get("inertia_rate", 0.0), "inertia_rate", w),
+                               reactive=number(t.get("reactive", 0.0), "reactive", w),
+                               x0=number(t.get("x0", 0.0), "x0", w), v0=number(t.get("v0", 0.0), "v0", w)))
+        drivers = []
+        for i, t in enumerate(doc.get("driver", []), 1):
+            w = f"[[driver]] #{i}"
+            check_keys(t, {"name", "velocity", "amplitude", "omega", "phase", "inertia"}, w)
+            if "velocity" not in t and "amplitude" not in t:
+                raise ModelError(w, "velocity", None, "a motion law: velocity = v (x = v t) and/or "
+                                 "amplitude = a with omega (x = a sin(omega t + phase))")
+            drivers.append(Driver(name=t.get("name", ""),
+                                  velocity=number(t["velocity"], "velocity", w) if "velocity" in t else None,
+                                  amplitude=number(t.get("amplitude", 0.0), "amplitude", w),
+                                  omega=number(t.get("omega", 0.0), "omega", w, nonnegative=True),
+                                  phase=number(t.get("phase", 0.0), "phase", w),
+                                  inertia=number(t.get("inertia", 0.0), "inertia", w, nonnegative=True)))
+        springs = [_link(t, f"[[spring]] #{i}", "k") for i, t in enumerate(doc.get("spring", []), 1)]
+        dampers = [_link(t, f"[[damper]] #{i}", "c") for i, t in enumerate(doc.get("damper", []), 1)]
+        gears = []
+        for i, t in enumerate(doc.get("gear", []), 1):
+            w = f"[[gear]] #{i}"
+            check_keys(t, {"between", "ratio"}, w)
+            gears.append(Gear(between=_pair(t, w), ratio=number(t.get("ratio"), "ratio", w)))
+        return cls(bodies=bodies, drivers=drivers, springs=springs, dampers=dampers, gears=gears,
+                   title=doc.get("title", ""))
+
+
+def _pair(t: dict, where: str) -> tuple[str, str]:
+    b = t.get("between")
+    if not isinstance(b, list) or len(b) != 2 or not all(isinstance(s, str) for s in b):
+        raise ModelError(where, "between", b, "a list of two names, e.g. [\"ground\", \"disk\"]")
+    return b[0], b[1]
+
+
+def _link(t: dict, where: str, key: str) -> Link:
+    allowed = {"between", key, "ratios"} | ({"psi"} if key == "k" else set())
+    check_keys(t, allowed, where)
+    ratios = t.get("ratios", [1.0, 1.0])
+    if not isinstance(ratios, list) or len(ratios) != 2:
+        raise ModelError(where, "ratios", ratios, "a list [r_a, r_b] of two numbers")
+    ratios = tuple(number(r, "ratios", where) for r in ratios)
+    value = number(t.get(key), key, where)
+    if value < 0:
+        raise ModelError(where, key, value, "a number >= 0")
+    psi = number(t.get("psi", 0.0), "psi", where, nonnegative=True)
+    return Link(between=_pair(t, where), value=value, ratios=ratios, psi=psi)

@@ -1,0 +1,197 @@
+"""Assemble a :class:`ShaftModel` with scikit-fem into a :class:`LinearSystem`."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+from skfem import Basis, ElementLineHermite, ElementLineP1, ElementLineP2, asm
+
+from discrete.errors import ModelError
+from discrete.linear_system import LinearSystem
+
+from . import forms
+from .mesh import LineMesh, build_line_mesh
+from .model import ShaftModel
+
+
+@dataclass
+class FEModel:
+    """An assembled FE model: the description, its mesh and basis, and the linear system."""
+
+    model: ShaftModel
+    mesh: LineMesh
+    basis: Basis
+    system: LinearSystem
+
+    def nodal_values(self, q: np.ndarray, field: str) -> tuple[np.ndarray, np.ndarray]:
+        """(x, value) of ``field`` at the mesh nodes (vertices) for a full-length DOF vector ``q``."""
+        sys = self.system
+        idx = np.flatnonzero(sys.dof_field == field)
+        x = sys.dof_x[idx]
+        vertex = np.isin(np.round(x / max(self.model.length, 1e-300), 12),
+                         np.round(self.mesh.nodes / max(self.model.length, 1e-300), 12))
+        idx, x = idx[vertex], x[vertex]
+        order = np.argsort(x)
+        return x[order], np.asarray(q)[idx[order]]
+
+
+def _rigid_modes(fields, dof_x, model_fields, held) -> np.ndarray:
+    """Rigid-body motions allowed by the supports and springs: rods a uniform u/theta,
+    beams the translation w = 1 and the rotation w = x (slope 1), restricted to the
+    combinations that vanish at every held or spring-loaded DOF."""
+    primary = fields == model_fields[0]
+    cands = [np.where(primary, 1.0, 0.0)]
+    if len(model_fields) > 1:
+        cands.append(np.where(primary, dof_x, 1.0))
+    R = np.column_stack(cands)
+    held = np.unique(np.asarray(held, dtype=int))
+    if held.size:
+        R = R @ sla.null_space(R[held], rcond=1e-12)
+    return R
+
+
+def _per_element(values: np.ndarray, basis: Basis) -> np.ndarray:
+    """Broadcast one value per element to the (elements, quadrature points) layout of ``basis``."""
+    return np.repeat(np.asarray(values, float)[:, None], basis.X.shape[-1], axis=1)
+
+
+def _segment_property(model: ShaftModel, mesh: LineMesh, fn) -> np.ndarray:
+    vals = np.array([fn(s, i) for i, s in enumerate(model.segments, 1)], dtype=float)
+    return vals[mesh.elem_segment]
+
+
+def _hysteretic_weight(model: ShaftModel, mesh: LineMesh) -> np.ndarray:
+    """2 delta per element with delta = psi / (4 pi): complex stiffness c (1 + 2 i delta)."""
+    return _segment_property(model, mesh, lambda s, i: 2.0 * s.psi / (4.0 * math.pi))
+
+
+def assemble(model: ShaftModel) -> FEModel:
+    """Assemble stiffness, mass (consistent or lumped), hysteretic loss stiffness, point
+    attachments and supports of ``model``."""
+    mesh = build_line_mesh(model)
+    m = mesh.skfem
+    loss = _hysteretic_weight(model, mesh)
+    if model.physics in ("torsion", "axial"):
+        basis, K, M, H, fields = _assemble_rod(model, mesh, m, loss)
+    elif model.theory == "euler-bernoulli":
+        basis, K, M, H, fields = _assemble_euler_bernoulli(model, mesh, m, loss)
+    else:
+        basis, K, M, H, fields = _assemble_timoshenko(model, mesh, m, loss)
+    dof_x = basis.doflocs[0].copy()
+    K, M = K.tolil(), M.tolil()
+    primary, rotation = model.fields[0], (model.fields[1] if len(model.fields) > 1 else None)
+
+    def at(x: float, field: str) -> int:
+        hit = np.flatnonzero((fields == field) & np.isclose(dof_x, x, rtol=0, atol=1e-9 * model.length))
+        return int(hit[0])
+
+    for p in model.points:
+        i = at(p.x, primary)
+        M[i, i] += p.mass if model.physics != "torsion" else p.inertia
+        K[i, i] += p.k
+        if rotation is not None:
+            j = at(p.x, rotation)
+            M[j, j] += p.inertia
+            K[j, j] += p.kr
+    constrained, sprung = [], []
+    for p in model.points:
+        sprung += [at(p.x, primary)] * bool(p.k) + ([at(p.x, rotation)] * bool(p.kr) if rotation else [])
+    for s in model.supports:
+        if s.type == "clamped":
+            constrained += [at(s.x, f) for f in model.fields]
+        elif s.type == "pinned":
+            constrained.append(at(s.x, "w"))
+        else:
+            i = at(s.x, primary)
+            K[i, i] += s.k
+            sprung += [i] * bool(s.k)
+            if rotation is not None:
+                j = at(s.x, rotation)
+                K[j, j] += s.kr
+                sprung += [j] * bool(s.kr)
+    rigid = _rigid_modes(fields, dof_x, model.fields, constrained + sprung)
+    system = LinearSystem(M=M.tocsr(), K=K.tocsr(), H=H, dof_field=fields, dof_x=dof_x,
+                          constrained=np.array(constrained, dtype=int), rigid_modes=rigid, title=model.title,
+                          physics=model.physics if model.physics != "bending" else f"bending ({model.theory})")
+    return FEModel(model=model, mesh=mesh, basis=basis, system=system)
+
+
+def _assemble_rod(model, mesh, m, loss):
+    elem = ElementLineP1() if model.order == 1 else ElementLineP2()
+    basis = Basis(m, elem, intorder=2 * model.order)
+    if model.physics == "torsion":
+        stiff = _segment_property(model, mesh, lambda s, i: s.material.G * s.section.need("J", f"[[segment]] #{i}", "torsion"))
+        inert = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.need("Ip", f"[[segment]] #{i}", "torsion") + s.rho_extra)
+    else:
+        stiff = _segment_property(model, mesh, lambda s, i: s.material.E * s.section.need("A", f"[[segment]] #{i}", "axial"))
+        inert = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.A + s.rho_extra)
+    K = asm(forms.rod_stiffness, basis, stiffness=_per_element(stiff, basis))
+    H = asm(forms.rod_stiffness, basis, stiffness=_per_element(stiff * loss, basis))
+    M = asm(forms.rod_mass, basis, inertia=_per_element(inert, basis))
+    if model.mass == "lumped":
+        M = sp.diags(np.asarray(M.sum(axis=1)).ravel())
+    fields = np.full(basis.N, model.fields[0], dtype=object)
+    return basis, K, M, H, fields
+
+
+def _assemble_euler_bernoulli(model, mesh, m, loss):
+    basis = Basis(m, ElementLineHermite(), intorder=6)
+    EI = _segment_property(model, mesh, lambda s, i: s.material.E * s.section.need("I", f"[[segment]] #{i}", "bending"))
+    rhoA = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.need("A", f"[[segment]] #{i}", "bending") + s.rho_extra)
+    K = asm(forms.euler_bernoulli_stiffness, basis, EI=_per_element(EI, basis))
+    H = asm(forms.euler_bernoulli_stiffness, basis, EI=_per_element(EI * loss, basis))
+    M = asm(forms.euler_bernoulli_mass, basis, rhoA=_per_element(rhoA, basis))
+    fields = np.empty(basis.N, dtype=object)
+    fields[basis.nodal_dofs[0]] = "w"
+    fields[basis.nodal_dofs[1]] = "w_x"
+    if model.mass == "lumped":
+        M = _hrz_lumped_hermite(M, basis, fields, mesh, rhoA)
+    return basis, K, M, H, fields
+
+
+def _hrz_lumped_hermite(M, basis, fields, mesh, rhoA):
+    """Hinton-Rock-Zienkiewicz lumping: m_e/2 per node translation, m_e h^2/78 per rotation."""
+    diag = np.zeros(basis.N)
+    w = fields == "w"
+    Mw = M.tocsr()[w][:, w]
+    diag[w] = np.asarray(Mw.sum(axis=1)).ravel()
+    h = np.diff(mesh.nodes)
+    rot = rhoA * h**3 / 78.0
+    t = basis.mesh.t
+    np.add.at(diag, basis.nodal_dofs[1][t[0]], rot)
+    np.add.at(diag, basis.nodal_dofs[1][t[1]], rot)
+    return sp.diags(diag)
+
+
+def _assemble_timoshenko(model, mesh, m, loss):
+    p = model.order
+    elem = (ElementLineP1() if p == 1 else ElementLineP2())
+    full = Basis(m, elem * elem, intorder=2 * p)
+    reduced = Basis(m, elem * elem, intorder=2 * p - 1 if p == 1 else 2)
+    nu_kappa = []
+    for i, s in enumerate(model.segments, 1):
+        kappa = model.shear_coefficient or s.section.shear_coefficient(s.material.nu)
+        if kappa is None:
+            raise ModelError(f"[[segment]] #{i} section", "kappa", None,
+                             "a shear coefficient for an explicit section in a Timoshenko model "
+                             "(or [model] shear_coefficient)")
+        nu_kappa.append(kappa)
+    kappa = np.asarray(nu_kappa)[mesh.elem_segment]
+    EI = _segment_property(model, mesh, lambda s, i: s.material.E * s.section.need("I", f"[[segment]] #{i}", "bending"))
+    GA = _segment_property(model, mesh, lambda s, i: s.material.G * s.section.need("A", f"[[segment]] #{i}", "bending"))
+    rhoA = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.A + s.rho_extra)
+    rhoI = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.I)
+    Kb = asm(forms.timoshenko_bending, full, EI=_per_element(EI, full))
+    Ks = asm(forms.timoshenko_shear, reduced, kGA=_per_element(kappa * GA, reduced))
+    Hb = asm(forms.timoshenko_bending, full, EI=_per_element(EI * loss, full))
+    Hs = asm(forms.timoshenko_shear, reduced, kGA=_per_element(kappa * GA * loss, reduced))
+    M = asm(forms.timoshenko_mass, full, rhoA=_per_element(rhoA, full), rhoI=_per_element(rhoI, full))
+    fields = np.empty(full.N, dtype=object)
+    iw, iphi = full.split_indices()
+    fields[iw], fields[iphi] = "w", "phi"
+    if model.mass == "lumped":
+        M = sp.diags(np.asarray(M.sum(axis=1)).ravel())
+    return full, Kb + Ks, M, Hb + Hs, fields

@@ -1,0 +1,206 @@
+"""Modal analysis of a :class:`LinearSystem`: K phi = omega^2 M phi.
+
+Sparse shift-invert Lanczos (ARPACK through ``scipy.sparse.linalg.eigsh`` with our own LU
+of ``K - sigma M``); never ``M^-1 K``.  Small systems use the dense symmetric-definite
+solver ``scipy.linalg.eigh(K, M)``.  Each mode carries three checks:
+
+* ``residuals``: backward error ||K phi - lam M phi|| / ((||K|| + |lam| ||M||) ||phi||);
+* ``rayleigh_rel_diff``: |phi^T K phi / phi^T M phi - lam| / |lam|, the Rayleigh quotient
+  recomputed from the returned vector.  Rounding in phi^T K phi grows like eps*lam_max/lam,
+  as does the error of lam itself, so a mismatch above ``tolerance`` marks a mesh too fine
+  for double precision (measured: a Hermite cantilever with 5000 elements gives a mismatch
+  of 2e-3 and an eigenvalue error of 4e-4); such modes are flagged ``reliable = False``;
+* ``precision_bound``: eps * lam_max / lam, the worst-case relative accuracy double
+  precision allows (lam_max estimated from the diagonal ratios K_ii / M_ii); reported for
+  information, it is typically 100-1000 times pessimistic.
+
+Free (unconstrained) systems are solved with a negative shift; their rigid-body modes are
+counted from the system's known rigid-body basis (FE and lumped builders provide it; for
+bare matrices they are detected from the LU pivots of K and the size of the eigenvalue)
+and reported with omega = 0.
+"""
+from __future__ import annotations
+
+import warnings as _warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from discrete.errors import ModelError, SolverError
+from discrete.linear_system import LinearSystem
+
+EPS = np.finfo(float).eps
+
+
+@dataclass
+class ModalResult:
+    omega_rad_s: np.ndarray
+    eigenvalues: np.ndarray
+    shapes: np.ndarray              # (n_dofs, n_modes), mass-normalised, zeros at constrained DOFs
+    residuals: np.ndarray
+    rayleigh_rel_diff: np.ndarray
+    precision_bound: np.ndarray
+    rigid: np.ndarray               # bool per mode
+    n_dofs: int                     # number of free DOFs
+    method: str
+    shift: float
+    tolerance: float
+    labels: list[str]
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def frequencies_hz(self) -> np.ndarray:
+        return self.omega_rad_s / (2 * np.pi)
+
+    @property
+    def rigid_body_modes(self) -> int:
+        return int(self.rigid.sum())
+
+    @property
+    def reliable(self) -> np.ndarray:
+        ok = (self.residuals < self.tolerance) & (self.rayleigh_rel_diff < self.tolerance)
+        return ok | self.rigid & (self.residuals < self.tolerance)
+
+    def to_dict(self) -> dict:
+        return {
+            "omega_rad_s": self.omega_rad_s.tolist(),
+            "frequencies_hz": self.frequencies_hz.tolist(),
+            "n_dofs": self.n_dofs,
+            "n_modes": int(self.omega_rad_s.size),
+            "residuals": self.residuals.tolist(),
+            "rayleigh_rel_diff": self.rayleigh_rel_diff.tolist(),
+            "precision_bound": self.precision_bound.tolist(),
+            "reliable": self.reliable.tolist(),
+            "rigid_body_modes": self.rigid_body_modes,
+            "method": self.method,
+            "shift": self.shift,
+            "warnings": list(self.warnings),
+        }
+
+
+def lambda_scale(K: sp.spmatrix, M: sp.spmatrix) -> float:
+    """Estimate of the largest eigenvalue: max K_ii / M_ii over DOFs with mass."""
+    k, m = K.diagonal(), M.diagonal()
+    mask = m > 0
+    if not mask.any():
+        raise ModelError("", "mass", 0.0, "a model with some inertia (all masses are zero)")
+    return float(np.max(np.abs(k[mask]) / m[mask]))
+
+
+def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | None = None,
+                   tolerance: float = 1e-5, dense_max: int = 300) -> ModalResult:
+    """Lowest ``n_modes`` natural frequencies and mass-normalised mode shapes of ``system``."""
+    n = system.n_free
+    if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n:
+        raise ModelError("[analysis]", "modes", n_modes, f"an integer from 1 to {n} (the number of free DOFs)")
+    K = system.free_block(system.K)
+    M = system.free_block(system.M)
+    n_massive = int(np.count_nonzero(M.diagonal() > 0)) if _is_diagonal(M) else n
+    if n_modes > n_massive:
+        raise ModelError("[analysis]", "modes", n_modes,
+                         f"at most {n_massive}: the lumped mass matrix has {n_massive} DOFs with inertia")
+    lam_max = lambda_scale(K, M)
+    rigid_level = 1e3 * EPS * lam_max
+    n_rigid = None if system.rigid_modes is None else system.rigid_modes.shape[1]
+    if n <= dense_max and _is_positive_definite(M):
+        lam, vec = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1])
+        method, sigma = "dense eigh(K, M)", 0.0
+    else:
+        lam, vec, sigma = _shift_invert(K, M, n_modes, shift, lam_max, rigid_level, n_rigid)
+        method = "sparse shift-invert Lanczos (eigsh)"
+    order = np.argsort(lam)
+    lam, vec = lam[order], vec[:, order]
+    mnorm = np.sqrt(np.einsum("ij,ij->j", vec, M @ vec))
+    vec = vec / mnorm
+    Kv, Mv = K @ vec, M @ vec
+    knorm, mnorm1 = spla.norm(K, 1), spla.norm(M, 1)
+    vnorm = np.linalg.norm(vec, axis=0)
+    residuals = np.linalg.norm(Kv - Mv * lam, axis=0) / ((knorm + np.abs(lam) * mnorm1) * vnorm)
+    rq = np.einsum("ij,ij->j", vec, Kv) / np.einsum("ij,ij->j", vec, Mv)
+    if n_rigid is None:
+        rigid = np.abs(lam) <= rigid_level
+    else:
+        rigid = np.arange(lam.size) < n_rigid
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rq_diff = np.where(rigid, 0.0, np.abs(rq - lam) / np.abs(lam))
+        bound = np.where(rigid, 0.0, EPS * lam_max / np.abs(lam))
+    omega = np.sqrt(np.clip(lam, 0.0, None))
+    omega[rigid] = 0.0
+    result = ModalResult(omega_rad_s=omega, eigenvalues=lam, shapes=system.expand(vec), residuals=residuals,
+                         rayleigh_rel_diff=rq_diff, precision_bound=bound, rigid=rigid, n_dofs=n,
+                         method=method, shift=float(sigma), tolerance=tolerance, labels=system.labels())
+    if rigid.any():
+        result.warnings.append(f"{int(rigid.sum())} rigid-body mode(s) (free system): reported with omega = 0")
+    bad = np.flatnonzero(~result.reliable)
+    for r in bad:
+        if rq_diff[r] >= tolerance:
+            result.warnings.append(
+                f"mode {r + 1}: not reliable in double precision (Rayleigh-quotient mismatch {rq_diff[r]:.1e} >= "
+                f"{tolerance:g}, worst-case bound eps*lam_max/lam = {bound[r]:.1e}); the mesh is too fine for "
+                f"this mode: use fewer or higher-order elements")
+        else:
+            result.warnings.append(f"mode {r + 1}: residual {residuals[r]:.1e} above {tolerance:g}")
+    return result
+
+
+def _is_diagonal(A: sp.spmatrix) -> bool:
+    A = sp.coo_matrix(A)
+    return bool(np.all(A.row == A.col))
+
+
+def _is_positive_definite(M: sp.spmatrix) -> bool:
+    try:
+        np.linalg.cholesky(M.toarray())
+        return True
+    except np.linalg.LinAlgError:
+        return False
+
+
+def _factor(A: sp.spmatrix):
+    """Sparse LU of A and the ratio of its smallest to largest pivot (None if exactly singular)."""
+    try:
+        lu = spla.splu(sp.csc_matrix(A))
+    except RuntimeError:
+        return None, 0.0
+    piv = np.abs(lu.U.diagonal())
+    return lu, float(piv.min() / piv.max())
+
+
+def _eigsh(K, M, k, sigma, lu, tol=0.0):
+    n = K.shape[0]
+    op = spla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
+    ncv = min(n, max(2 * k + 1, 20))
+    with _warnings.catch_warnings():
+        _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
+        return spla.eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol, ncv=ncv)
+
+
+def _shift_invert(K, M, k, shift, lam_max, rigid_level, n_rigid):
+    if k >= K.shape[0]:
+        raise ModelError("[analysis]", "modes", k, f"fewer than {K.shape[0]} for the sparse solver")
+    if shift is not None:
+        lu, _ = _factor(K - shift * M)
+        if lu is None:
+            raise SolverError(f"K - sigma M is singular at the requested shift {shift}: choose another shift")
+        lam, vec = _eigsh(K, M, k, shift, lu)
+        return lam, vec, shift
+    lu, pivot_ratio = _factor(K) if n_rigid in (0, None) else (None, 0.0)
+    if lu is not None and (n_rigid == 0 or pivot_ratio > 1e3 * EPS):
+        lam, vec = _eigsh(K, M, k, 0.0, lu)
+        return lam, vec, 0.0
+    # Free (or nearly free) system: rigid-body modes.  First pass with a small negative
+    # shift, then re-shift to a fraction of the lowest flexible eigenvalue found.
+    tau = 1e-8 * lam_max
+    lu, _ = _factor(K + tau * M)
+    lam, vec = _eigsh(K, M, k, -tau, lu, tol=1e-8)
+    flexible = lam[lam > rigid_level]
+    if flexible.size and 1e-2 * flexible.min() < tau:
+        tau = max(1e-2 * flexible.min(), 10 * rigid_level)
+        lu, _ = _factor(K + tau * M)
+        lam, vec = _eigsh(K, M, k, -tau, lu)
+    else:
+        lam, vec = _eigsh(K, M, k, -tau, lu)
+    return lam, vec, -tau

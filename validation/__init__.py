@@ -1,0 +1,1 @@
+"""Validation of drivefem against independent references."""
