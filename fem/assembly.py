@@ -166,11 +166,17 @@ def _hrz_lumped_hermite(M, basis, fields, mesh, rhoA):
     return sp.diags(diag)
 
 
+def _gauss_line(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """n-point Gauss rule on the reference interval [0, 1] (skfem's line rules have >= 2 points)."""
+    xi, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (xi + 1.0)[None, :], 0.5 * w
+
+
 def _assemble_timoshenko(model, mesh, m, loss):
     p = model.order
     elem = (ElementLineP1() if p == 1 else ElementLineP2())
     full = Basis(m, elem * elem, intorder=2 * p)
-    reduced = Basis(m, elem * elem, intorder=2 * p - 1 if p == 1 else 2)
+    reduced = Basis(m, elem * elem, quadrature=_gauss_line(p))
     nu_kappa = []
     for i, s in enumerate(model.segments, 1):
         kappa = model.shear_coefficient or s.section.shear_coefficient(s.material.nu)

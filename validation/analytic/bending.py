@@ -65,19 +65,26 @@ def euler_bernoulli_omegas(EI, mass_per_length, length, roots) -> np.ndarray:
 
 
 def _tip_mass_det(x, mass_ratio: float, inertia_ratio: float):
-    """Scaled 2x2 determinant for the clamped beam with tip mass/inertia (see caller)."""
+    """Reduced 2x2 determinant for the clamped beam with tip mass/inertia (see caller)."""
     x = np.asarray(x, dtype=float)
-    cc, ss, t = np.cos(x) / np.cosh(x), np.sin(x) / np.cosh(x), np.tanh(x)
-    # (4.60) with C3 = -C1, C4 = -C2 (clamp); value and derivatives d/d(beta x) at the tip,
-    # each divided by cosh(beta L); columns are the C1 and C2 shape functions.
-    a0 = (cc - 1.0, ss - t)
-    a1 = (-ss - t, cc - 1.0)
-    a2 = (-cc - 1.0, -ss - t)
-    a3 = (ss - t, -cc - 1.0)
+    c, s, e = np.cos(x), np.sin(x), np.exp(-x)
+    one = np.ones_like(x)
+    # Shape functions (cos, sin, e^{-xi}, e^{xi - x}) of xi = beta * position and their
+    # derivatives d^k/d(xi)^k at the tip xi = x.
+    d0 = (c, s, e, one)
+    d1 = (-s, c, -e, one)
+    d2 = (-c, -s, e, one)
+    d3 = (s, -c, -e, one)
     jx3, etax = inertia_ratio * x**3, mass_ratio * x
-    moment = [(a2[k] - jx3 * a1[k]) / (1.0 + jx3) for k in range(2)]
-    shear = [(a3[k] + etax * a0[k]) / (1.0 + etax) for k in range(2)]
-    return moment[0] * shear[1] - moment[1] * shear[0]
+    moment = [(p - jx3 * q) / (1.0 + jx3) for p, q in zip(d2, d1)]
+    shear = [(p + etax * q) / (1.0 + etax) for p, q in zip(d3, d0)]
+
+    def reduce(row):
+        # clamp A(0) = A'(0) = 0  ->  C1 = -C3 - e C4,  C2 = C3 - e C4
+        return row[2] - row[0] + row[1], row[3] - e * (row[0] + row[1])
+
+    (m3, m4), (s3, s4) = reduce(moment), reduce(shear)
+    return m3 * s4 - m4 * s3
 
 
 def cantilever_tip_mass_roots(mass_ratio: float, n: int, inertia_ratio: float = 0.0) -> np.ndarray:
@@ -88,12 +95,14 @@ def cantilever_tip_mass_roots(mass_ratio: float, n: int, inertia_ratio: float = 
     moment, ``EI y'''`` = shear, as in §4.11); the tip conditions follow from the variation of
     ``T - V`` with ``T`` including ``M ydot(L)^2 / 2 + J_t ydot'(L)^2 / 2``:
     ``EI A''(L) = +J_t omega^2 A'(L)`` and ``EI A'''(L) = -M omega^2 A(L)``.
-    With the clamp conditions ``C3 = -C1, C4 = -C2`` of (4.69) substituted in (4.60), the 4x4
-    determinant reduces to a 2x2 one (as (4.70)-(4.71)); it is evaluated divided by
-    ``cosh^2 x`` and by the positive row scales ``(1 + j x^3)``, ``(1 + eta x)``, sign changes are
-    located on a fine grid and refined with brentq.  ``mass_ratio = inertia_ratio = 0`` gives
-    (4.72); ``mass_ratio -> inf`` makes the first root tend to 0 and the next ones tend to the
-    clamped-pinned roots.
+
+    The general solution (4.60) is used with ``ch, sh`` recombined into ``e^{-beta x}`` and
+    ``e^{beta (x - L)}`` (same solution space; O(1) entries, so no cancellation for high modes).
+    The clamp conditions eliminate two constants (as in (4.69)-(4.70)); the remaining 2x2
+    determinant, with the tip rows divided by the positive scales ``1 + j x^3`` and
+    ``1 + eta x``, is scanned for sign changes on a fine grid and refined with brentq.
+    ``mass_ratio = inertia_ratio = 0`` gives (4.72); ``mass_ratio -> inf`` makes the first root
+    tend to 0 and the next ones tend to the clamped-pinned roots.
     """
     if mass_ratio < 0.0 or inertia_ratio < 0.0:
         raise ValueError(f"mass_ratio = {mass_ratio!r}, inertia_ratio = {inertia_ratio!r} are not "

@@ -11,12 +11,12 @@ from scipy.linalg import eigh
 
 
 def two_mass_three_spring(m: float, c: float) -> np.ndarray:
-    """Wall-c-m-c-m-c-wall chain (§4.4, Fig. 4.7): ``(sqrt(c/m), sqrt(3c/m))``, ``beta = (1, -1)``."""
+    """Wall-c-m-c-m-c-wall chain (§4.4, Fig. 4.7): ``(sqrt(c/m), sqrt(3c/m))``, beta = (1, -1)."""
     return np.array([np.sqrt(c / m), np.sqrt(3.0 * c / m)])
 
 
 def two_discs(J1: float, J2: float, c: float) -> np.ndarray:
-    """Two free discs on a shaft of stiffness ``c`` (4.41): ``(0, sqrt(c (J1 + J2) / (J1 J2)))``."""
+    """Two free discs on a shaft of stiffness ``c`` (4.41): ``(0, sqrt(c (J1+J2) / (J1 J2)))``."""
     return np.array([0.0, np.sqrt(c * (J1 + J2) / (J1 * J2))])
 
 

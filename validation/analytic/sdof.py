@@ -37,7 +37,7 @@ def peak_frequency_ratio(delta):
     (``alpha`` then decreases monotonically; no peak).
     """
     d2 = np.asarray(delta, dtype=float) ** 2
-    return np.where(d2 < 0.5, np.sqrt(np.abs(1.0 - 2.0 * d2)), np.nan)
+    return np.where(d2 < 0.5, np.sqrt(np.abs(1.0 - 2.0 * d2)), np.nan)[()]
 
 
 def peak_amplification(delta):
@@ -46,7 +46,8 @@ def peak_amplification(delta):
     Also the peak of the kinematic factor (5.28).  ``nan`` when ``delta^2 >= 0.5`` (no peak).
     """
     d = np.asarray(delta, dtype=float)
-    return np.where(d**2 < 0.5, 1.0 / (2.0 * d * np.sqrt(np.abs(1.0 - d**2))), np.nan)
+    with np.errstate(divide="ignore"):
+        return np.where(d**2 < 0.5, 1.0 / (2.0 * d * np.sqrt(np.abs(1.0 - d**2))), np.nan)[()]
 
 
 def kinematic_amplification(z, delta):
@@ -55,7 +56,7 @@ def kinematic_amplification(z, delta):
 
 
 def kinematic_peak_frequency_ratio(delta):
-    """Peak location of (5.28): ``z = 1 / sqrt(1 - 2 delta^2)``; ``nan`` when ``delta^2 >= 0.5``."""
+    """Peak location of (5.28): ``z = 1 / sqrt(1 - 2 delta^2)``; ``nan`` if ``delta^2 >= 0.5``."""
     return 1.0 / peak_frequency_ratio(delta)
 
 
@@ -69,15 +70,15 @@ def psi_from_delta(delta):
 
 
 def delta_from_psi(psi):
-    """Inverse of :func:`psi_from_delta`: ``lambda = -ln(1 - psi) / 2``, ``delta = lambda / (2 pi)``."""
+    """Inverse of :func:`psi_from_delta`: ``lambda = -ln(1 - psi) / 2``, ``delta = lambda/(2 pi)``."""
     return -np.log1p(-np.asarray(psi, dtype=float)) / (4.0 * np.pi)
 
 
 def hysteretic_delta(psi):
     """Damping ratio ``delta_h = psi / (4 pi)`` of the package's complex-stiffness convention.
 
-    A hysteretic element ``c (1 + 2 i delta_h) = c (1 + i eta)``, ``eta = psi / (2 pi)``, dissipates
-    ``pi eta c A^2 = psi c A^2 / 2`` per cycle, exactly (5.69); its resonance amplitude
+    A hysteretic element ``c (1 + 2 i delta_h) = c (1 + i eta)``, ``eta = psi / (2 pi)``,
+    dissipates ``pi eta c A^2 = psi c A^2 / 2`` per cycle, exactly (5.69); its resonance amplitude
     ``F0 / (2 delta_h c)`` therefore equals the energy-balance value ``2 pi F0 / (psi c)`` (5.76).
     This is the small-damping mapping ``psi = 4 pi delta``, NOT the exact free-decay mapping of
     :func:`psi_from_delta` (which gives a ~22 % smaller amplitude at ``psi = 0.4``; V5.13a).
@@ -115,8 +116,8 @@ def energy_balance_2dof(c1, c2, psi1, psi2, F1, F2, beta) -> tuple[float, float]
 def energy_balance_ndof(c, psi, F, beta) -> np.ndarray:
     """N-DOF generalisation (5.74): ``A_j = 2 pi sum_i beta_i F_i / sum_i psi_i c_i beta_i^2``.
 
-    ``beta`` is the resonant mode (the book normalises ``beta_j = 1``; the result does not depend on
-    the normalisation); returns all amplitudes ``A_i = A_j beta_i``.
+    ``beta`` is the resonant mode (the book normalises ``beta_j = 1``; the result does not depend
+    on the normalisation); returns all amplitudes ``A_i = A_j beta_i``.
     """
     c, psi, F, beta = (np.asarray(v, dtype=float) for v in (c, psi, F, beta))
     return 2.0 * np.pi * np.dot(beta, F) / np.dot(psi * c, beta**2) * beta

@@ -1,0 +1,51 @@
+"""Matplotlib figures of results (never recomputes anything): mode shapes and FRFs."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def plot_mode_shapes(fe, modal, path: str | Path, n: int | None = None) -> Path:
+    """Line plot of the primary field of the first ``n`` modes of an FE model."""
+    field = fe.model.fields[0]
+    n = modal.omega_rad_s.size if n is None else min(n, modal.omega_rad_s.size)
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for r in range(n):
+        x, v = fe.nodal_values(modal.shapes[:, r], field)
+        scale = np.max(np.abs(v)) or 1.0
+        label = f"mode {r + 1}: {modal.frequencies_hz[r]:.4g} Hz" + ("" if modal.reliable[r] else " (unreliable)")
+        ax.plot(x, v / scale, label=label)
+    ax.axhline(0, color="0.7", lw=0.8)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel(f"{field} (normalised)")
+    ax.set_title(fe.model.title or f"{fe.model.physics} modes")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_frf(result, path: str | Path, title: str = "") -> Path:
+    """Amplitude (log) and phase lag of a harmonic response."""
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    f = result.frequencies_hz
+    for j, name in enumerate(result.outputs):
+        a1.semilogy(f, np.maximum(result.amplitude[:, j], 1e-300), label=name)
+        a2.plot(f, result.phase_lag_deg[:, j], label=name)
+    a1.set_ylabel("amplitude")
+    a2.set_ylabel("phase lag [deg]")
+    a2.set_xlabel("f [Hz]")
+    a1.set_title(title or f"harmonic response ({result.damping})", fontsize=9)
+    a1.legend(fontsize=8)
+    fig.tight_layout()
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

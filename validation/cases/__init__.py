@@ -1,0 +1,1 @@
+"""Validation case modules (discovered automatically by :func:`validation.registry.load_all`)."""
