@@ -132,6 +132,11 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     if not np.any(F[system.free]) and not np.any(Ub):
         raise ModelError("[analysis]", "load", None, "at least one [[load]] or [[base_motion]] with a non-zero amplitude")
     outputs = list(range(n)) if outputs is None else [int(i) for i in outputs]
+    n_rigid = 0 if system.rigid_modes is None else system.rigid_modes.shape[1]
+    if n_rigid and np.any(omegas == 0):
+        raise ModelError("[analysis]", "frequencies", 0.0,
+                         f"frequencies > 0: at omega = 0 the problem is static and this model has {n_rigid} "
+                         "rigid-body mode(s) (under-constrained); add supports or start the sweep above 0")
 
     C = system.C.copy()
     H = system.H.copy()
@@ -150,8 +155,11 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
             modal = modal_analysis(system, k)
         Q = _modal(system, omegas, F, Ub, C, H, modal, damping)
         name = f"modal superposition ({modal.omega_rad_s.size} modes" + (", quasi-static base motion exact)" if np.any(Ub) else ")")
+    desc = damping.describe()
+    if system.H.nnz and damping.type != "none":
+        desc += " + hysteretic (psi of segments/springs)"
     res = HarmonicResult(omega_rad_s=omegas, response=Q[:, outputs], outputs=[system.label(i) for i in outputs],
-                         method=name, damping=damping.describe())
+                         method=name, damping=desc)
     if np.any(Ub):
         ub_full = np.zeros(n, dtype=complex)
         ub_full[system.constrained] = Ub

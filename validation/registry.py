@@ -125,7 +125,10 @@ def select(names: list[str] | None = None, include_slow: bool = True) -> list[Ca
     if names:
         unknown = [n for n in names if n not in reg and not any(c.group == n for c in reg.values())]
         if unknown:
-            raise KeyError(f"unknown validation case(s) {unknown}; known cases: {sorted(reg)}; "
-                           f"groups: {sorted({c.group for c in reg.values()})}")
+            from discrete.errors import ModelError
+
+            raise ModelError("drivefem validate", "--case", unknown[0] if len(unknown) == 1 else unknown,
+                             "a case name (" + ", ".join(sorted(reg)) + ") or a group ("
+                             + ", ".join(sorted({c.group for c in reg.values()})) + ")")
         return [c for c in reg.values() if c.name in names or c.group in names]
     return [c for c in reg.values() if include_slow or not c.slow]
