@@ -138,11 +138,12 @@ def _assemble_rod(model, mesh, m, loss):
 
 
 def _assemble_euler_bernoulli(model, mesh, m, loss):
-    basis = Basis(m, ElementLineHermite(), intorder=6)
+    basis = Basis(m, ElementLineHermite(), intorder=6)        # mass: cubic x cubic
+    stiff_basis = Basis(m, ElementLineHermite(), intorder=2)
     EI = _segment_property(model, mesh, lambda s, i: s.material.E * s.section.need("I", f"[[segment]] #{i}", "bending"))
     rhoA = _segment_property(model, mesh, lambda s, i: s.material.rho * s.section.need("A", f"[[segment]] #{i}", "bending") + s.rho_extra)
-    K = asm(forms.euler_bernoulli_stiffness, basis, EI=_per_element(EI, basis))
-    H = asm(forms.euler_bernoulli_stiffness, basis, EI=_per_element(EI * loss, basis))
+    K = asm(forms.euler_bernoulli_stiffness, stiff_basis, EI=_per_element(EI, stiff_basis))
+    H = asm(forms.euler_bernoulli_stiffness, stiff_basis, EI=_per_element(EI * loss, stiff_basis))
     M = asm(forms.euler_bernoulli_mass, basis, rhoA=_per_element(rhoA, basis))
     fields = np.empty(basis.N, dtype=object)
     fields[basis.nodal_dofs[0]] = "w"

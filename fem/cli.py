@@ -61,6 +61,11 @@ def print_modal(mf, sys_, res, out=sys.stdout) -> None:
         else:
             f = w = f"{'--':>14}"
         print(f"{r + 1:4d} {f} {w} {res.residuals[r]:9.1e} {res.rayleigh_rel_diff[r]:9.1e}  {note}", file=out)
+    if mf.kind == "lumped":
+        bound = _dunkerley(mf)
+        if bound is not None:
+            print(f"Dunkerley's lower bound (4.40) of the first frequency: {bound:.6f} rad/s "
+                  f"({100 * (bound / res.omega_rad_s[0] - 1):+.2f} %)", file=out)
     for wmsg in res.warnings:
         print(f"warning: {wmsg}", file=out)
 
@@ -89,7 +94,20 @@ def modal_json(mf, res) -> dict:
         d["mode_shapes"] = shapes
     else:
         d["mode_shapes"] = {"dofs": mf.linear_system().labels(), "modes": res.shapes.T.tolist()}
+        bound = _dunkerley(mf)
+        if bound is not None:
+            d["dunkerley_lower_bound_rad_s"] = bound
     return d
+
+
+def _dunkerley(mf) -> float | None:
+    """Dunkerley's lower bound (4.40) of the first frequency for grounded lumped models."""
+    from discrete.dunkerley import dunkerley_bound
+
+    sys_ = mf.linear_system()
+    if sys_.rigid_modes is not None and sys_.rigid_modes.shape[1]:
+        return None
+    return dunkerley_bound(sys_)
 
 
 def cmd_modal(args) -> int:

@@ -84,3 +84,12 @@ def test_validate_unknown_case_is_an_error(capsys):
     assert main(["validate", "--case", "no-such-case", "--quiet"]) == 2
     err = capsys.readouterr().err
     assert "--case = 'no-such-case'" in err and "torsion-end-disc" in err
+
+
+def test_lumped_modal_reports_dunkerley_bound(tmp_path):
+    """Digest V4.7b: trace(e m) = 4m/(3c) -> bound 27.386 rad/s, 13.4 % below k_1 = 31.623."""
+    out = tmp_path / "chain.json"
+    assert main(["modal", str(ROOT / "examples" / "two_mass_chain.toml"), "--json", str(out)]) == 0
+    data = json.loads(out.read_text())
+    assert data["dunkerley_lower_bound_rad_s"] == pytest.approx(1 / np.sqrt(4 / 3000), rel=1e-12)
+    assert data["omega_rad_s"] == pytest.approx([np.sqrt(1000), np.sqrt(3000)], rel=1e-12)

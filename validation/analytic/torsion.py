@@ -80,3 +80,33 @@ def forced_torsion_end_amplitude(stiffness, inertia_per_length, length, omega, m
     tan_over_x = np.where(x == 0.0, 1.0, np.tan(safe) / safe)
     out = moment * length / stiffness * tan_over_x
     return float(out) if out.ndim == 0 else out
+
+
+def stepped_fixed_free_omegas(segments: list[tuple[float, float, float]], n: int,
+                              omega_max: float | None = None) -> np.ndarray:
+    """First ``n`` natural frequencies of a stepped shaft clamped at x = 0 and free at the end.
+
+    ``segments``: (length, stiffness G J_t, inertia per length rho I_p) from the clamp.  Within
+    segment i, phi = a cos(sigma_i s) + b sin(sigma_i s) (4.54), sigma_i = omega sqrt(inertia_i /
+    stiffness_i); angle and torque GJ phi' are continuous at the steps.  The free-end torque
+    T(L; omega) of the solution with phi(0) = 0, GJ phi'(0) = 1 vanishes at the natural
+    frequencies; its sign changes are bracketed on a fine omega grid and refined by brentq.
+    """
+    def end_torque(omega: float) -> float:
+        phi, torque = 0.0, 1.0
+        for length, stiff, inert in segments:
+            sig = omega * np.sqrt(inert / stiff)
+            c, s = np.cos(sig * length), np.sin(sig * length)
+            phi, torque = phi * c + torque * s / (stiff * sig), -phi * stiff * sig * s + torque * c
+        return torque
+
+    if omega_max is None:  # the r-th root lies near (2r - 1) pi / (2 T), T the wave travel time
+        travel = sum(length * np.sqrt(inert / stiff) for length, stiff, inert in segments)
+        omega_max = 2.0 * (n + 1) * np.pi / travel
+    grid = np.linspace(1e-9 * omega_max, omega_max, 400 * (n + 2))
+    vals = np.array([end_torque(w) for w in grid])
+    idx = np.flatnonzero(np.sign(vals[:-1]) != np.sign(vals[1:]))
+    roots = [brentq(end_torque, grid[i], grid[i + 1], xtol=1e-13 * omega_max) for i in idx[:n]]
+    if len(roots) < n:
+        raise ValueError(f"n = {n} is not valid; allowed: at most {len(roots)} roots below omega_max = {omega_max:g}")
+    return np.array(roots)

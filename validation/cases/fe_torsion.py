@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from fem import PointAttachment, assemble, modal_analysis
-from validation.analytic.torsion import (end_disc_roots, reduced_inertia_omega, torsion_omegas,
-                                         torsion_roots)
+from validation.analytic.torsion import (end_disc_roots, reduced_inertia_omega, stepped_fixed_free_omegas,
+                                         torsion_omegas, torsion_roots)
 from validation.builders import STEEL, uniform
 from validation.registry import case, check, claim
 
@@ -147,3 +147,24 @@ def torsion_convergence():
         out.append(check("torsion-convergence", "FE theory", f"order of omega_2 error, P{order}", expected, slope,
                          0.15 / expected, note=f"errors {['%.2e' % e for e in errs]}"))
     return out
+
+
+@case("torsion-stepped-shaft", group="fe-torsion")
+def torsion_stepped_shaft():
+    """Stepped shaft (solid d = 60 mm, tube 80/50 mm, solid d = 40 mm; per-segment material
+    override on the last) clamped-free: roots of the transfer relation with angle and torque
+    continuous at the steps (independent of the FE), P2 with 12 elements per segment
+    (tolerance (sigma_max h)^4 / 720 for the most demanding segment)."""
+    from fem import Material, Section, Segment, ShaftModel, Support
+
+    alu = Material(E=7.0e10, G=2.6e10, rho=2700.0)
+    segs = [Segment(0.4, 12, Section.from_dict({"shape": "circle", "d": 0.06}, "s1"), STEEL),
+            Segment(0.6, 12, Section.from_dict({"shape": "tube", "d": 0.08, "di": 0.05}, "s2"), STEEL),
+            Segment(0.3, 12, Section.from_dict({"shape": "circle", "d": 0.04}, "s3"), alu)]
+    model = ShaftModel("torsion", segs, supports=[Support(0.0)], order=2)
+    res = modal_analysis(assemble(model).system, 4)
+    data = [(s.length, s.material.G * s.section.J, s.material.rho * s.section.Ip) for s in segs]
+    exact = stepped_fixed_free_omegas(data, 4)
+    sig_h = max(np.sqrt(i / k) * (L / 12) for L, k, i in data) * exact
+    return [check("torsion-stepped-shaft", "(4.54) with step continuity", f"omega_{r + 1} [rad/s]", exact[r],
+                  res.omega_rad_s[r], sig_h[r] ** 4 / 720 + 1e-10) for r in range(4)]
