@@ -204,8 +204,9 @@ def energy_balance_hysteretic():
 @case("modal-vs-direct", group="forced")
 def modal_vs_direct():
     """Second method: the tip receptance of a steel cantilever (Hermite, 40 elements, Rayleigh
-    damping) by modal superposition with all but one mode equals the direct solve (the omitted
-    top mode's static flexibility is ~1e-7 of the tip's); with the lowest 20 modes the
+    damping) by modal superposition with 60 of the 80 modes equals the direct solve (relative
+    to the peak response) within twice the omitted modes' share of the static tip flexibility
+    plus ten times the modes' own accuracy eps lam_max/lam_1; with the lowest 20 modes the
     truncation error, measured against the static tip flexibility, stays below twice the
     omitted modes' share of that flexibility (sum over r > 20 of phi_r(tip)^2 / lambda_r) up
     to 1.5x the 3rd frequency (relative to the local response it is larger near the
@@ -219,15 +220,20 @@ def modal_vs_direct():
     om = np.linspace(0.05, 1.5, 60) * modes.omega_rad_s[2]
     damp = Damping("rayleigh", alpha=0.5, beta=2e-6)
     direct = harmonic_response(sys_, om, force=F, outputs=[tip], damping=damp).response[:, 0]
-    full = harmonic_response(sys_, om, force=F, outputs=[tip], damping=damp, method="modal", n_modes=sys_.n_free - 1).response[:, 0]
+    full = harmonic_response(sys_, om, force=F, outputs=[tip], damping=damp, method="modal", n_modes=60).response[:, 0]
     trunc = harmonic_response(sys_, om, force=F, outputs=[tip], damping=damp, method="modal", n_modes=20).response[:, 0]
     static = abs(harmonic_response(sys_, [0.0], force=F, outputs=[tip], damping=damp).response[0, 0])
     m20 = modal_analysis(sys_, 20)
     residual = 1.0 - float(np.sum(m20.shapes[tip] ** 2 / m20.eigenvalues)) / static
-    e_full = float(np.max(np.abs(full - direct))) / static
+    m_all = modal_analysis(sys_, 60)
+    residual_all = abs(1.0 - float(np.sum(m_all.shapes[tip] ** 2 / m_all.eigenvalues)) / static)
+    e_full = float(np.max(np.abs(full - direct) / np.abs(direct).max()))
     e_tr = float(np.max(np.abs(trunc - direct))) / static
-    return [check("modal-vs-direct", "second method", "all but one mode: max |difference| / static flexibility", 0.0,
-                  e_full, 1e-6, scale=1.0),
+    tol_full = 2 * residual_all + 10 * m_all.precision_bound[0]
+    return [check("modal-vs-direct", "second method", "60 of 80 modes: max |difference| / peak response", 0.0,
+                  e_full, tol_full, scale=1.0,
+                  note=f"omitted modes' share of the static flexibility {residual_all:.1e}; "
+                       f"mode accuracy eps lam_max/lam_1 = {m_all.precision_bound[0]:.1e}"),
             check("modal-vs-direct", "second method", "20 modes: max |difference| / static flexibility", 0.0, e_tr,
                   2 * residual, scale=1.0, note=f"tolerance: twice the omitted modes' share of the static tip "
                                                 f"flexibility, {residual:.1e}"),
