@@ -60,7 +60,7 @@ def print_modal(mf, sys_, res, out=sys.stdout) -> None:
             f, w = f"{res.frequencies_hz[r]:14.6f}", f"{res.omega_rad_s[r]:14.6f}"
         else:
             f = w = f"{'--':>14}"
-        print(f"{r + 1:4d} {f} {w} {res.residuals[r]:9.1e} {res.rayleigh_rel_diff[r]:9.1e}  {note}", file=out)
+        print(f"{r + 1:4d} {f} {w} {res.residuals[r]:9.1e} {res.rayleigh_rel_diff[r]:9.1e}  {note}".rstrip(), file=out)
     if mf.kind == "lumped":
         bound = _dunkerley(mf)
         if bound is not None:
@@ -272,6 +272,9 @@ def main(argv: list[str] | None = None) -> int:
     except SolverError as exc:
         print(f"drivefem: solver failure: {exc}", file=sys.stderr)
         return 4
+    except BrokenPipeError:  # output piped into head & co.
+        sys.stderr.close()
+        return 0
 
 
 if __name__ == "__main__":
