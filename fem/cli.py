@@ -5,6 +5,7 @@ import argparse
 import csv
 import json
 import sys
+import tomllib
 import warnings
 from pathlib import Path
 
@@ -110,9 +111,29 @@ def _dunkerley(mf) -> float | None:
     return dunkerley_bound(sys_)
 
 
+def _drive_doc(path: str) -> dict | None:
+    """The parsed file if it describes a drive of regular structure ([drive] table), else None."""
+    from .drives import is_drive
+
+    p = Path(path)
+    if not p.is_file():
+        return None
+    try:
+        with open(p, "rb") as fh:
+            doc = tomllib.load(fh)
+    except tomllib.TOMLDecodeError:
+        return None
+    return doc if is_drive(doc) else None
+
+
 def cmd_modal(args) -> int:
     from .modelfile import load_model_file
 
+    doc = _drive_doc(args.model)
+    if doc is not None:
+        from .drives import cli as drives_cli
+
+        return drives_cli.run("modal", doc, modes=args.modes, json_path=args.json)
     mf = load_model_file(args.model)
     sys_, res = modal_report(mf, args.modes)
     print_modal(mf, sys_, res)
@@ -140,6 +161,11 @@ def forced_run(mf):
 def cmd_forced(args) -> int:
     from .modelfile import load_model_file
 
+    doc = _drive_doc(args.model)
+    if doc is not None:
+        from .drives import cli as drives_cli
+
+        return drives_cli.run("forced", doc, json_path=args.json, csv_path=args.csv)
     mf = load_model_file(args.model)
     if mf.analysis.get("type") != "forced":
         raise ModelError("[analysis]", "type", mf.analysis.get("type"), "'forced' for drivefem forced")
@@ -176,6 +202,15 @@ def write_harmonic_csv(res, path) -> None:
                 z = res.response[j, k]
                 row += [abs(z), res.phase_lag_deg[j, k], z.real, z.imag]
             w.writerow(row)
+
+
+def cmd_compare(args) -> int:
+    from .drives import cli as drives_cli
+
+    doc = _drive_doc(args.model)
+    if doc is None:
+        raise ModelError(str(args.model), "drive", None, "a model file with a [drive] table (drive of regular structure)")
+    return drives_cli.run("compare", doc, json_path=args.json)
 
 
 # ------------------------------------------------------------- simulate
@@ -241,6 +276,10 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--plot", help="write a PNG of amplitude and phase here")
     f.add_argument("--all", action="store_true", help="print every frequency")
     f.set_defaults(func=cmd_forced)
+    c = sub.add_parser("compare", help="a [drive] model by the discrete, transfer-matrix and continuum methods")
+    c.add_argument("model")
+    c.add_argument("--json")
+    c.set_defaults(func=cmd_compare)
     s = sub.add_parser("simulate", help="time simulation of a drive with nonsmooth elements")
     s.add_argument("model")
     s.add_argument("--json")
