@@ -1,11 +1,24 @@
 # Two commands for a newcomer:  `make demo`  and  `make test`.
-# Each sets up its own virtualenv (.venv) and installs the package into it.
+# Each sets up its own virtualenv (.venv), installs the package into it, and (as root) the one
+# system library off-screen rendering needs (Mesa's OSMesa: VTK renders without any X server).
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+export PYVISTA_OFF_SCREEN := true
+export VTK_DEFAULT_OPENGL_WINDOW := vtkOSOpenGLRenderWindow
+export MPLBACKEND := Agg
 
-.PHONY: demo test test-slow validate bench clean
+.PHONY: demo test test-slow validate bench system-deps clean
+
+system-deps:
+	@if ldconfig -p 2>/dev/null | grep -q libOSMesa; then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+		echo "installing libosmesa6 (off-screen rendering)"; \
+		apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends libosmesa6 >/dev/null; \
+	else \
+		echo "note: off-screen rendering needs Mesa's OSMesa: sudo apt-get install libosmesa6 (render steps will say so)"; \
+	fi
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -13,16 +26,16 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
 	touch $(STAMP)
 
-demo: $(STAMP)
+demo: system-deps $(STAMP)
 	$(BIN)/drivefem demo
 
-test: $(STAMP)
-	MPLBACKEND=Agg $(BIN)/python -m pytest -q -m "not slow"
+test: system-deps $(STAMP)
+	$(BIN)/python -m pytest -q -m "not slow"
 
-test-slow: $(STAMP)
-	MPLBACKEND=Agg $(BIN)/python -m pytest -q -m slow
+test-slow: system-deps $(STAMP)
+	$(BIN)/python -m pytest -q -m slow
 
-validate: $(STAMP)
+validate: system-deps $(STAMP)
 	$(BIN)/drivefem validate --report validation-report
 
 bench: $(STAMP)

@@ -138,6 +138,19 @@ def cmd_modal(args) -> int:
     sys_, res = modal_report(mf, args.modes)
     print_modal(mf, sys_, res)
     _write_json(modal_json(mf, res), args.json)
+    if args.vtu:
+        from .export import write_modes
+
+        print(f"wrote {write_modes(mf.fe_model(), res, args.vtu)}")
+    if args.png:
+        from .render import RenderUnavailable, render_modes
+
+        try:
+            for p in render_modes(mf.fe_model(), res, args.png):
+                print(f"wrote {p}")
+        except RenderUnavailable as exc:
+            print(f"warning: no images: {exc}", file=sys.stderr)
+            return 5
     if args.plot and mf.kind == "fe":
         from .plots import plot_mode_shapes
 
@@ -252,6 +265,18 @@ def cmd_validate(args) -> int:
     return 0 if data["passed"] else 1
 
 
+# --------------------------------------------------------------- render
+def cmd_render(args) -> int:
+    from .render import render_model_file
+
+    modes = [int(m) for m in args.mode] if args.mode else None
+    rep = render_model_file(args.model, args.out, n_modes=args.modes, gif=args.gif, modes=modes)
+    for p in rep.data_files + rep.images:
+        print(f"wrote {p}")
+    print(rep.message)
+    return 0 if rep.rendered else 5
+
+
 # ----------------------------------------------------------------- demo
 def cmd_demo(args) -> int:
     from .demo import run_demo
@@ -268,7 +293,16 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
     m.add_argument("--json", help="write the JSON result here")
     m.add_argument("--plot", help="write a PNG line plot of the mode shapes here (FE models)")
+    m.add_argument("--vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
+    m.add_argument("--png", help="render one PNG per mode off-screen into this directory (FE models)")
     m.set_defaults(func=cmd_modal)
+    r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data")
+    r.add_argument("model")
+    r.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
+    r.add_argument("--mode", action="append", help="render only this mode number (repeatable)")
+    r.add_argument("--out", required=True, help="output directory")
+    r.add_argument("--gif", action="store_true", help="also write an animated GIF per mode")
+    r.set_defaults(func=cmd_render)
     f = sub.add_parser("forced", help="harmonic response / FRF ([analysis] type = 'forced')")
     f.add_argument("model")
     f.add_argument("--json")

@@ -30,7 +30,7 @@ def run_demo(out: Path) -> int:
         t0 = time.perf_counter()
         argv = [kind, str(path), "--json", f"{stem}.json"]
         if kind == "modal":
-            argv += ["--plot", f"{stem}_modes.png"] if "[[segment]]" in path.read_text() else []
+            argv += ["--plot", f"{stem}_modes.png", "--vtu", f"{stem}_modes.vtu"] if "[[segment]]" in path.read_text() else []
         elif kind == "forced":
             argv += ["--csv", f"{stem}.csv", "--plot", f"{stem}_frf.png"]
         else:
@@ -40,6 +40,14 @@ def run_demo(out: Path) -> int:
         dt = time.perf_counter() - t0
         failures += rc != 0
         summary.append((path.name, kind, rc, dt))
+        print()
+    for name, extra in (("cantilever.toml", ["--gif"]), ("torsion_shaft_disc.toml", []),
+                        ("stepped_rotor_timoshenko.toml", [])):
+        argv = ["render", str(EXAMPLES / name), "--modes", "4", "--out", str(out / "render" / Path(name).stem)] + extra
+        print(f"$ drivefem {' '.join(argv)}")
+        rc = cli.main(argv)
+        failures += rc != 0
+        summary.append((name, "render", rc, 0.0))
         print()
     print("$ drivefem validate --fast --report", out / "validation")
     rc = cli.main(["validate", "--fast", "--quiet", "--report", str(out / "validation"),

@@ -1,5 +1,6 @@
 """Run the validation catalogue and present it: a table on stdout, a report directory
-(markdown table, JSON, a plot of relative errors against tolerances)."""
+(markdown table, JSON, a plot of relative errors against tolerances, and the HTML page with
+its figures from :mod:`validation.html_report`)."""
 from __future__ import annotations
 
 import json
@@ -81,7 +82,10 @@ def write_report(outcomes: list[CaseOutcome], directory: str | Path) -> Path:
         {"cases": [c.to_dict() | {"case": o.case.name} for o in outcomes for c in o.checks],
          "errors": {o.case.name: o.error for o in outcomes if o.error}}, indent=2))
     _plot_errors(outcomes, directory / "errors.png")
-    return directory / "report.md"
+    from .html_report import make_figures, write_html
+
+    figures = [directory / "errors.png"] if (directory / "errors.png").exists() else []
+    return write_html(outcomes, directory, figures + make_figures(directory))
 
 
 def _plot_errors(outcomes, path: Path) -> None:
