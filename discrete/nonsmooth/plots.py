@@ -1,0 +1,78 @@
+"""Time plots and phase portraits (PNG, matplotlib Agg); they take a result, never recompute it."""
+from __future__ import annotations
+
+import pathlib
+
+import numpy as np
+
+
+def plot_result(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
+    """Write ``time.png`` (x and v of all DOFs, events marked), ``phase_<dof>.png`` per body (not drivers)
+    and ``energy.png`` (E - E0 and the integrated work).  Returns the written paths."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    names = result.names[:max_dofs]
+    fig, ax = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    for i, n in enumerate(names):
+        ax[0].plot(result.t, result.x[i], lw=1, label=n)
+        ax[1].plot(result.t, result.v[i], lw=1, label=n)
+    marks = {"stick": "v", "slip": "^", "reversal": "x", "impact": "o", "contact_open": "s", "contact_close": "D"}
+    for kind, mk in marks.items():
+        tt = result.event_times(kind)
+        if tt.size and tt.size < 2000:
+            ax[1].plot(tt, 0 * tt, mk, ms=4, ls="none", label=kind)
+    ax[0].set_ylabel("x")
+    ax[1].set_ylabel("v")
+    ax[1].set_xlabel("t, s")
+    ax[0].legend(fontsize=7, loc="best")
+    ax[1].legend(fontsize=7, loc="best", ncol=3)
+    title = f"{result.method}" + (f", period {result.period:.6g} s" if result.period else "")
+    ax[0].set_title(title, fontsize=9)
+    fig.tight_layout()
+    p = out / "time.png"
+    fig.savefig(p, dpi=110)
+    plt.close(fig)
+    paths.append(p)
+    for i, n in enumerate(names):
+        if n in result.driven:
+            continue                   # prescribed motion: no phase portrait
+        fig, a = plt.subplots(figsize=(4.5, 4))
+        x, lab = result.x[i], f"{n}: x"
+        if result.t.size > 2 and np.ptp(result.t) > 0:
+            slope, icpt = np.polyfit(result.t, x, 1)
+            T = result.period
+            if T and result.t[-1] - result.t[0] > T:       # exact mean velocity over the last period
+                t1 = result.t[-1]
+                slope = (x[-1] - np.interp(t1 - T, result.t, x)) / T
+                icpt = float(np.mean(x - slope * result.t))
+            drift = abs(slope) * np.ptp(result.t)
+            if drift > 2 * np.ptp(x - slope * result.t):       # a drifting (driven) body: show the cycle
+                x, lab = x - (slope * result.t + icpt), f"{n}: x - ({slope:.4g} t + {icpt:.3g})"
+        a.plot(x, result.v[i], lw=0.8)
+        a.set_xlabel(lab)
+        a.set_ylabel(f"{n}: v")
+        a.set_title(f"phase portrait of {n}", fontsize=9)
+        fig.tight_layout()
+        p = out / f"phase_{n}.png"
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+    if result.energy.size == result.t.size and result.t.size:
+        fig, a = plt.subplots(figsize=(7, 3.5))
+        a.plot(result.t, result.energy - result.energy[0], lw=1, label="E(t) - E(0)")
+        a.plot(result.t, result.work, lw=1, ls="--", label="work of non-conservative forces")
+        a.set_xlabel("t, s")
+        a.legend(fontsize=8)
+        a.set_title(f"energy balance, relative error {result.energy_error:.2e}", fontsize=9)
+        fig.tight_layout()
+        p = out / "energy.png"
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
+    return paths
