@@ -40,6 +40,9 @@ validate: system-deps $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/modal_scaling.py
+	$(BIN)/python benchmarks/stick_slip.py
+	$(BIN)/python benchmarks/drives.py
+	$(BIN)/python benchmarks/render.py
 
 clean:
 	rm -rf $(VENV) drivefem-demo validation-report .pytest_cache build *.egg-info
