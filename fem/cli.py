@@ -230,6 +230,20 @@ def cmd_compare(args) -> int:
 def cmd_simulate(args) -> int:
     from .modelfile import load_model_file
 
+    doc = _read_toml(args.model)
+    from . import hybrid
+
+    if hybrid.is_hybrid(doc):
+        result = hybrid.run_model_file(doc)
+        d = result.to_dict()
+        _print_simulation(doc.get("title", ""), d)
+        _write_json(d, args.json)
+        if args.csv:
+            print(f"wrote {hybrid.write_csv(result, args.csv)}")
+        if args.png:
+            for p in hybrid.plot_result(result, args.png):
+                print(f"wrote {p}")
+        return 1 if d.get("stopped_early") else 0
     mf = load_model_file(args.model)
     try:
         from discrete import nonsmooth
@@ -237,10 +251,7 @@ def cmd_simulate(args) -> int:
         raise SolverError("time simulation is not available in this build") from exc
     result = nonsmooth.run_model_file(mf.doc)
     d = result.to_dict()
-    print(f"{mf.title}\nsimulated to t = {d.get('t_end')}; {len(d.get('events', []))} events; "
-          f"period = {d.get('period')}; energy error = {d.get('energy_error')}")
-    for wmsg in d.get("warnings", []):
-        print(f"warning: {wmsg}")
+    _print_simulation(mf.title, d)
     _write_json(d, args.json)
     if args.csv:
         nonsmooth.write_csv(result, args.csv)
@@ -248,6 +259,33 @@ def cmd_simulate(args) -> int:
         for p in nonsmooth.plot_result(result, args.png):
             print(f"wrote {p}")
     return 1 if d.get("stopped_early") else 0
+
+
+def _read_toml(path: str) -> dict:
+    p = Path(path)
+    if not p.is_file():
+        raise ModelError("", "model file", str(p), "an existing TOML file")
+    try:
+        with open(p, "rb") as fh:
+            return tomllib.load(fh)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(str(p), "TOML", str(exc), "valid TOML syntax") from exc
+
+
+def _print_simulation(title: str, d: dict) -> None:
+    counts = ", ".join(f"{n} {k}" for k, n in sorted(d.get("event_counts", {}).items()))
+    print(f"{title}\nsimulated to t = {d.get('t_end')} ({d.get('method', '')}); {len(d.get('events', []))} events"
+          + (f" ({counts})" if counts else "") + f"; period = {d.get('period')}; energy error = {d.get('energy_error')}")
+    red = d.get("reduction")
+    if red:
+        print(f"reduction: {red.get('method')}, {red.get('retained_modes')} modes, highest retained frequency "
+              f"{red.get('highest_frequency_hz', float('nan')):.6g} Hz, suggested time step "
+              f"{red.get('suggested_time_step_s', float('nan')):.3g} s; restitution at coupling DOFs: "
+              + ", ".join(f"{c} {100 * r:.1f} %" for c, r in zip(red.get("coupling_dofs", []), red.get("restitution", []))))
+    for wmsg in d.get("warnings", []):
+        print(f"warning: {wmsg}")
+    if d.get("stopped_early"):
+        print(f"stopped early: {d.get('reason')}")
 
 
 # ------------------------------------------------------------- validate

@@ -38,6 +38,7 @@ class Options:
     energy: bool = True
     max_zero_length: int = 100     # consecutive events without time progress before giving up
     output_step: float | None = None   # extra output samples inside exact pieces (plots, CSV)
+    contact_tol: float = 1e-9      # persistent-contact force counted as negative only below -contact_tol F_ref
 
 
 _PADE6 = (1.0, 1.0 / 2, 5.0 / 44, 1.0 / 66, 1.0 / 792, 1.0 / 15840, 1.0 / 665280)
@@ -119,6 +120,27 @@ class EventDrivenSolver:
         self.o = options or Options()
         self._pieces: dict = {}
         self.warnings: list[str] = []
+        self._contact_ftol = self._contact_force_tolerances()
+
+    def _contact_force_tolerances(self) -> dict:
+        """Round-off tolerance of each persistent contact's force.  When an elastic body lands
+        on a stop with restitution 0 the required contact force is exactly zero and grows
+        afterwards; its round-off value (-1e-20) must not release the contact, or the run stalls
+        on zero-length events.  Scale: F_ref = m_eff omega_max v_ref (effective mass of the
+        contact coordinate, highest frequency of the linear part, largest initial or driver
+        velocity); the release guard of the next piece then decides from the force's trend."""
+        p = self.p
+        v0 = np.asarray(getattr(p, "v0", np.zeros(0)), dtype=float)
+        vref = max(float(np.max(np.abs(v0))) if v0.size else 0.0,
+                   max((abs(d.velocity) + abs(d.amplitude * d.omega) for d in p.drivers.values()), default=0.0),
+                   1e-300)
+        tol = {}
+        for i, el in enumerate(p.elements):
+            if isinstance(el, Impact):
+                g = p.gf[i]
+                meff = 1.0 / float(g @ np.linalg.solve(p.M0, g)) if np.any(g) else 0.0
+                tol[i] = self.o.contact_tol * meff * max(getattr(p, "omega_max", 0.0), 1e-300) * vref
+        return tol
 
     # ------------------------------------------------------------ helpers
     def _split(self, z):
@@ -170,7 +192,7 @@ class EventDrivenSolver:
                     lim = limits.get(i, el.levels(t)[1])
                     excess = (abs(lam) - lim) / max(lim, abs(lam) * 1e-12, 1e-300)
                 else:
-                    excess = -lam / max(abs(lam), 1e-300) if lam < 0 else -1.0
+                    excess = -lam / max(abs(lam), 1e-300) if lam < -self._contact_ftol.get(i, 0.0) else -1.0
                 if excess > 1e-12 and excess > worst:
                     worst, wi = excess, i
             if wi is None:

@@ -1,0 +1,174 @@
+"""Running a hybrid model and its result (FE field history, events, energy balance, reduction report)."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from discrete.nonsmooth import Options, simulate
+
+from discrete.timestepping import StepOptions, simulate_timestepping
+
+from ..assembly import FEModel
+from .build import CompiledHybrid, HybridModel, compile_hybrid
+from .modelfile import parse_hybrid
+
+
+@dataclass
+class HybridResult:
+    """Result of a hybrid simulation.
+
+    ``t`` (n_times,) and ``field_history`` (n_times x n_fe_dofs): full FE DOF vectors (constrained
+    and driven DOFs included) sampled from the solver's record; ``solver`` the solver's own result
+    (:class:`discrete.nonsmooth.SimulationResult` or :class:`discrete.timestepping.SteppingResult`,
+    with the history of every solved DOF and, for the event-driven solver, exact event times);
+    ``fe`` the FE model; ``compiled`` the problem with its reduction; ``reduction`` the report
+    (None for the full model); ``warnings`` solver and reduction warnings.
+    """
+
+    t: np.ndarray
+    field_history: np.ndarray
+    fe: FEModel
+    solver: object
+    compiled: CompiledHybrid
+    reduction: dict | None
+    warnings: list[str] = field(default_factory=list)
+    method: str = "event"
+    wall_time: float = 0.0
+
+    @property
+    def events(self):
+        return self.solver.events
+
+    @property
+    def period(self):
+        return self.solver.period
+
+    @property
+    def energy_error(self) -> float:
+        return float(self.solver.energy_error)
+
+    @property
+    def t_end(self) -> float:
+        return float(self.solver.t_end)
+
+    def field_at(self, field_name: str, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """(x, value) of ``field_name`` at the mesh nodes for sample ``k``."""
+        return self.fe.nodal_values(self.field_history[k], field_name)
+
+    def dof_history(self, field_name: str, x: float) -> np.ndarray:
+        """History of one FE DOF (by field and position) over the sampled times."""
+        j = self.fe.system.dof_index(field=field_name, x=x)
+        return self.field_history[:, j]
+
+    def element_force(self, name: str) -> tuple[np.ndarray, np.ndarray]:
+        """(t, F) of element ``name`` at the solver's recorded instants: the force along s
+        (for impacts the constraint force of the persistent contact, from the equations of motion
+        of the event-driven solver; for the time stepper the mean force impulse / dt of each step)."""
+        from discrete.nonsmooth import Friction, Gap, Impact, OneSided
+
+        comp, s = self.compiled, self.solver
+        names = [el.name for el in comp.elements]
+        if name not in names:
+            raise KeyError(f"no element {name!r}; elements: {', '.join(names[:20])}")
+        i = names.index(name)
+        el = comp.elements[i]
+        if self.method == "moreau":
+            return s.t, s.impulses[i]
+        sv = el.g @ s.x
+        if isinstance(el, Gap) and el.law == "exact":
+            F = np.where(sv > el.upper, -el.k * (sv - el.upper), np.where(sv < el.lower, -el.k * (sv - el.lower), 0.0))
+            return s.t, F
+        if isinstance(el, OneSided):
+            d = el.side * (sv - el.s_open)
+            return s.t, np.where(d > 0, -el.k * (sv - el.s_open), 0.0)
+        if isinstance(el, (Impact, Friction)):
+            # modes from the event sequence: persistent contact / stick between the switching events
+            p = comp.problem
+            F = np.zeros(s.t.size)
+            evs = [e for e in s.events if e.element == name]
+            on_kinds = ("contact_close",) if isinstance(el, Impact) else ("stick",)
+            off_kinds = ("contact_open",) if isinstance(el, Impact) else ("slip", "reversal")
+            intervals, start = [], None
+            for e in evs:
+                if e.kind in on_kinds and start is None:
+                    start = e.t
+                elif e.kind in off_kinds and start is not None:
+                    intervals.append((start, e.t))
+                    start = None
+            if start is not None:
+                intervals.append((start, np.inf))
+            f = p.f
+            for a, b in intervals:
+                ks = np.flatnonzero((s.t >= a) & (s.t <= b))
+                for k in ks:
+                    mode = [0] * len(comp.elements)
+                    mode[i] = 1 if isinstance(el, Impact) else 0
+                    for jj, other in enumerate(comp.elements):
+                        if jj != i and isinstance(other, Friction):
+                            w = other.g @ s.v[:, k] - other.surface_velocity
+                            mode[jj] = int(np.sign(w)) or 0
+                    out = p.evaluate(s.t[k], s.x[f, k][:, None], s.v[f, k][:, None], p.basis(s.t[k])[:, None],
+                                     tuple(mode))
+                    F[k] = out["F"][i, 0]
+            if isinstance(el, Friction):
+                slip = np.ones(s.t.size, dtype=bool)
+                for a, b in intervals:
+                    slip &= ~((s.t >= a) & (s.t <= b))
+                w = el.g @ s.v - el.surface_velocity
+                F = np.where(slip, el.slip_force(np.sign(w).astype(int), w, 1.0, s.t), F)
+            return s.t, F
+        raise KeyError(f"element {name!r}: no force history for {type(el).__name__}")
+
+    def to_dict(self, events: bool = True) -> dict:
+        d = self.solver.to_dict(events=events)
+        d.update({"t_end": self.t_end, "period": None if self.period is None else float(self.period),
+                  "energy_error": self.energy_error, "integrator": self.method,
+                  "reduction": self.reduction, "warnings": list(self.warnings),
+                  "n_fe_dofs": int(self.fe.system.n_dofs), "n_solved_dofs": int(self.compiled.system.n_dofs),
+                  "n_field_samples": int(self.t.size), "wall_time_s": self.wall_time})
+        return d
+
+
+def _samples(t: np.ndarray, n: int) -> np.ndarray:
+    if t.size <= n:
+        return np.arange(t.size)
+    grid = np.linspace(t[0], t[-1], n)
+    idx = np.searchsorted(t, grid).clip(0, t.size - 1)
+    return np.unique(idx)
+
+
+def run(model: HybridModel, settings: dict) -> HybridResult:
+    """Compile and integrate ``model`` with the settings of ``[simulation]``."""
+    t0 = time.perf_counter()
+    comp = compile_hybrid(model)
+    warn = list(comp.warnings)
+    method = settings.get("method", "event")
+    if method == "moreau":
+        opts = StepOptions(dt=settings["dt"], theta=settings.get("theta", 0.5), tol=settings.get("tol", 1e-10),
+                           max_iter=settings.get("max_iter", 2000), max_events=settings.get("max_events", 100_000))
+        n_steps = int(np.ceil(settings["t_end"] / opts.dt))
+        opts.sample_every = max(1, n_steps // settings.get("samples", 2000))
+        if comp.reduced is not None and opts.dt > comp.reduced.suggested_time_step:
+            warn.append(f"dt = {opts.dt:g} s exceeds the reduction's suggested time step "
+                        f"{comp.reduced.suggested_time_step:.3g} s (1/20 of the shortest retained period)")
+        res = simulate_timestepping(comp.system, comp.elements, drivers=comp.drivers, forces=comp.forces,
+                                    x0=comp.x0, v0=comp.v0, t_end=settings["t_end"], options=opts)
+    else:
+        kw = {k: settings[k] for k in ("max_events", "max_step", "steps_per_period", "rest_tol", "energy") if k in settings}
+        res = simulate(comp.problem, settings["t_end"], Options(**kw))
+    warn += [w for w in res.warnings if w not in warn]
+    if getattr(res, "stopped_early", False):
+        warn.append(f"stopped early: {res.reason}")
+    idx = _samples(res.t, settings.get("samples", 2000))
+    fld = comp.field(res.x[:, idx])
+    return HybridResult(t=res.t[idx], field_history=fld, fe=model.fe, solver=res, compiled=comp,
+                        reduction=comp.restitution_report, warnings=warn, method=method,
+                        wall_time=time.perf_counter() - t0)
+
+
+def run_model_file(doc: dict) -> HybridResult:
+    """Parse and simulate a hybrid model file (a dict from TOML); see docs/hybrid.md."""
+    model, settings = parse_hybrid(doc)
+    return run(model, settings)
