@@ -179,6 +179,23 @@ def cmd_forced(args) -> int:
         from .drives import cli as drives_cli
 
         return drives_cli.run("forced", doc, json_path=args.json, csv_path=args.csv)
+    from discrete import steady
+
+    doc = _read_toml(args.model)
+    if steady.is_nonlinear_forced(doc):
+        res = steady.run_forced(doc)
+        print((doc.get("title", "") + "\n" if doc.get("title") else "") + res.table())
+        _write_json(res.to_dict() | {"title": doc.get("title", "")}, args.json)
+        if args.csv:
+            steady.write_csv(res, args.csv)
+            print(f"wrote {args.csv}")
+        if args.plot:
+            steady.plot_afc(res, args.plot)
+            print(f"wrote {args.plot}")
+        if not str(res.reason).startswith("reached"):
+            print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
+            return 1
+        return 0
     mf = load_model_file(args.model)
     if mf.analysis.get("type") != "forced":
         raise ModelError("[analysis]", "type", mf.analysis.get("type"), "'forced' for drivefem forced")
@@ -288,6 +305,14 @@ def _print_simulation(title: str, d: dict) -> None:
         print(f"stopped early: {d.get('reason')}")
 
 
+# ---------------------------------------------------------------- sweep
+def cmd_sweep(args) -> int:
+    from .sweep import run_sweep
+
+    return run_sweep(args.model, scheduler=args.scheduler, resume=args.resume, out=args.out,
+                     json_path=args.json, workers=args.workers)
+
+
 # ------------------------------------------------------------- validate
 def cmd_validate(args) -> int:
     from validation.report import print_table, run_validation, write_report
@@ -358,6 +383,14 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--csv")
     s.add_argument("--png", help="directory for time plots and phase portraits")
     s.set_defaults(func=cmd_simulate)
+    w = sub.add_parser("sweep", help="evaluate a grid of parameter points ([sweep] table) on Dask")
+    w.add_argument("model")
+    w.add_argument("--scheduler", help="address of an existing dask.distributed scheduler (default: local cluster)")
+    w.add_argument("--resume", help="directory of a previous sweep: points already done are not recomputed")
+    w.add_argument("--out", help="directory for the per-point results (default: next to --json or ./sweep-<model>)")
+    w.add_argument("--json", help="write the collected results here")
+    w.add_argument("--workers", type=int, default=None, help="local workers (0: serial, no Dask)")
+    w.set_defaults(func=cmd_sweep)
     v = sub.add_parser("validate", help="run the validation catalogue")
     v.add_argument("--case", action="append", help="case or group name (repeatable)")
     v.add_argument("--report", help="directory for the report (markdown, JSON, plots)")

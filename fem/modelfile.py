@@ -29,11 +29,11 @@ BENDING_ONLY = {"theory": "theory applies only to physics = 'bending'",
 
 
 def _nonsmooth_keys() -> set[str]:
-    try:
-        from discrete.nonsmooth import TOP_LEVEL_KEYS
-    except ImportError:
-        return set()
-    return set(TOP_LEVEL_KEYS)
+    """Top-level keys of the time-simulation and steady-state tables (discrete.nonsmooth/steady)."""
+    from discrete.nonsmooth import TOP_LEVEL_KEYS as simulation_keys
+    from discrete.steady import TOP_LEVEL_KEYS as steady_keys
+
+    return set(simulation_keys) | set(steady_keys)
 
 
 @dataclass

@@ -16,6 +16,8 @@ EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
 
 def _kind(path):
     doc = tomllib.loads(path.read_text())
+    if "sweep" in doc:
+        return "sweep"
     return "simulate" if "simulation" in doc else doc.get("analysis", {}).get("type", "modal")
 
 

@@ -1,0 +1,181 @@
+"""A periodic forced system extracted from a nonsmooth :class:`~discrete.nonsmooth.Problem`, with the
+forcing frequency as a free parameter, for the steady-state solvers (harmonic balance, shooting).
+
+Equations on the free DOFs q (drivers x_c(t) = P_c e(t) prescribed, e = [1, t, sin w t, cos w t]):
+
+    M q'' + C q' + K q = -(K_fc x_c + C_fc x_c' + M_fc x_c'') + F_x e(t) + sum_i g_i F_i(s_i, s_i')
+
+with s_i = g_i . q + ge_i . e(t) the coordinate of element i.  ``P``, ``F_x`` and ``ge`` do not depend
+on w (they hold amplitudes and phases), only ``e(t)`` and its derivatives do, so one compiled Problem
+serves every frequency.  Element force laws for the smooth solvers (HB):
+
+* one-sided spring, gap (exact law): piecewise linear, continuous -- used as they are (AFT handles the
+  kink; the Newton Jacobian is the piecewise derivative);
+* gap (arctan law (11.2)): as defined;
+* Coulomb friction: regularised ``-a0 tanh(w / eps) - a1 w - a2 w|w| - a3 w^2|w|`` (w the slip
+  velocity), eps = ``regularisation`` (a stated approximation: the HB branch is compared with exact
+  shooting in the validation cases);
+* impacts: not supported by HB (use shooting);
+* :class:`Cubic`: the cubic spring ``F = -k3 s^3`` of the textbook's (8.20) (HB/time integration only;
+  the exact event-driven solver has no cubic element).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ModelError
+from ..nonsmooth.elements import Friction, Gap, Impact, OneSided
+
+
+@dataclass
+class Cubic:
+    """Cubic spring on s = g . x: force along s ``F = -k3 s^3`` (hardening for k3 > 0)."""
+
+    name: str
+    g: np.ndarray
+    k3: float
+    kind = "cubic"
+
+
+class PeriodicSystem:
+    """Free-DOF matrices, driver/force data and elements of a Problem, evaluable at any forcing omega."""
+
+    def __init__(self, problem, extra=(), regularisation: float = 1e-3):
+        p = problem
+        if not p.time_invariant:
+            raise ModelError("steady", "inertia_rate", "nonzero", "constant inertias for a periodic steady state")
+        if len(p.omegas) > 1:
+            raise ModelError("steady", "omega", p.omegas, "one common excitation frequency of all drivers and forces")
+        if p.ne > 2 and np.any(np.abs(p.P[:, 1]) > 0):
+            raise ModelError("steady", "driver.velocity", "nonzero", "drivers without drift (x = V t is not periodic)")
+        self.problem = p
+        self.n = p.nf
+        f, c = p.f, p.c
+        self.M, self.C, self.K = p.M0, p.C + p.Cr, p.K
+        self.Kfc = p.Kfull[np.ix_(f, c)]
+        self.Cfc = p.Cfull[np.ix_(f, c)]
+        self.Mfc = p.Mfull[np.ix_(f, c)]
+        self.Pc = p.P[c]
+        self.Fx = p.Fx
+        self.harmonic = p.ne > 2
+        self.elements = list(p.elements)
+        self.gf = [np.asarray(x, float) for x in p.gf]
+        self.ge = [np.asarray(x, float) for x in p.ge]
+        self.Pfull = p.P
+        for el in extra:
+            g = np.asarray(el.g, float)
+            self.elements.append(el)
+            self.gf.append(g[f])
+            self.ge.append(g @ p.P)
+        self.eps = float(regularisation)
+
+    @property
+    def smooth_ok(self) -> bool:
+        return not any(isinstance(el, Impact) for el in self.elements)
+
+    @property
+    def exact_ok(self) -> bool:
+        return not any(isinstance(el, Cubic) for el in self.elements)
+
+    # ------------------------------------------------------------ exogenous
+    def exo(self, t, omega):
+        """e, e', e'' at times t (arrays (ne, m)) for forcing frequency omega."""
+        t = np.atleast_1d(np.asarray(t, float))
+        ne = self.problem.ne
+        e = np.zeros((ne, t.size))
+        ed = np.zeros_like(e)
+        edd = np.zeros_like(e)
+        e[0] = 1.0
+        e[1] = t
+        ed[1] = 1.0
+        if ne > 2:
+            s, co = np.sin(omega * t), np.cos(omega * t)
+            e[2], e[3] = s, co
+            ed[2], ed[3] = omega * co, -omega * s
+            edd[2], edd[3] = -omega ** 2 * s, -omega ** 2 * co
+        return e, ed, edd
+
+    def forcing(self, t, omega):
+        """Linear right-hand side f(t) (n, m) and the element coordinates' exogenous parts."""
+        e, ed, edd = self.exo(t, omega)
+        xc, xcd, xcdd = self.Pc @ e, self.Pc @ ed, self.Pc @ edd
+        f = -(self.Kfc @ xc + self.Cfc @ xcd + self.Mfc @ xcdd) + self.Fx @ e
+        se = np.array([ge @ e for ge in self.ge]).reshape(len(self.ge), -1)
+        sde = np.array([ge @ ed for ge in self.ge]).reshape(len(self.ge), -1)
+        return f, se, sde
+
+    # ------------------------------------------------------------ elements
+    def element_force(self, i, s, sd):
+        """Force along s of element i, and its derivatives dF/ds, dF/ds' (smooth/penalty laws)."""
+        el = self.elements[i]
+        z = np.zeros_like(s)
+        if isinstance(el, OneSided):
+            d = s - el.s_open
+            on = (el.side * d > 0).astype(float)
+            return -el.k * d * on, -el.k * on, z
+        if isinstance(el, Gap):
+            if el.law == "arctan":
+                h = 1e-7 * max(el.upper, 1e-300)
+                F = el.smooth_force(s)
+                return F, (el.smooth_force(s + h) - el.smooth_force(s - h)) / (2 * h), z
+            up = (s > el.upper).astype(float)
+            lo = (s < el.lower).astype(float)
+            F = -el.k * ((s - el.upper) * up + (s - el.lower) * lo)
+            return F, -el.k * (up + lo), z
+        if isinstance(el, Friction):
+            w = sd - el.surface_velocity
+            fk = el.kinetic
+            eps = self.eps
+            th = np.tanh(w / eps)
+            F = -fk * th - el.viscous * w - el.quadratic * w * np.abs(w) - el.cubic * w * w * np.abs(w)
+            dF = -fk * (1 - th ** 2) / eps - el.viscous - 2 * el.quadratic * np.abs(w) - 3 * el.cubic * w * np.abs(w)
+            return F, z, dF
+        if isinstance(el, Cubic):
+            return -el.k3 * s ** 3, -3 * el.k3 * s ** 2, z
+        raise ModelError(f"element {el.name!r}", "kind", el.kind,
+                         "one_sided | gap | friction | cubic for harmonic balance (impacts: use method = 'shooting')")
+
+    def rhs_terms(self, t, q, v, omega):
+        """Sum of element forces on the DOFs (n, m) and Jacobians dFq, dFv (n, n, m)."""
+        f, se, sde = self.forcing(t, omega)
+        n, m = q.shape
+        Fq = np.zeros((n, n, m))
+        Fv = np.zeros((n, n, m))
+        Fsum = f.copy()
+        for i in range(len(self.elements)):
+            g = self.gf[i]
+            s = g @ q + se[i]
+            sd = g @ v + sde[i]
+            F, dFs, dFv = self.element_force(i, s, sd)
+            Fsum += np.outer(g, F)
+            gg = np.outer(g, g)[:, :, None]
+            Fq += gg * dFs[None, None, :]
+            Fv += gg * dFv[None, None, :]
+        return Fsum, Fq, Fv
+
+    def element_series(self, t, q, v, omega):
+        """Element forces along s (n_el, m) and coordinates s (n_el, m) at given states."""
+        f, se, sde = self.forcing(t, omega)
+        out, ss = [], []
+        for i in range(len(self.elements)):
+            s = self.gf[i] @ q + se[i]
+            sd = self.gf[i] @ v + sde[i]
+            out.append(self.element_force(i, s, sd)[0])
+            ss.append(s)
+        return np.array(out).reshape(len(self.elements), -1), np.array(ss).reshape(len(self.elements), -1)
+
+    def ode(self, omega):
+        """First-order right-hand side y' = fun(t, y) (y = [q, v]) of the smooth/penalty model."""
+        Minv = np.linalg.inv(self.M)
+        n = self.n
+
+        def fun(t, y):
+            y2 = y.reshape(2 * n, -1)
+            q, v = y2[:n], y2[n:]
+            Fs, _, _ = self.rhs_terms(np.atleast_1d(t), q, v, omega)
+            a = Minv @ (Fs - self.K @ q - self.C @ v)
+            return np.concatenate([v, a]).reshape(y.shape)
+
+        return fun

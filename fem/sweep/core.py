@@ -1,0 +1,428 @@
+"""``drivefem sweep``: parameter sweeps of a model file on Dask (see docs/steady.md, "Sweeps").
+
+The sweep is defined in the model file::
+
+    [sweep]
+    analysis = "steady"      # per point: "steady" (periodic steady state at the point's forcing
+                             # frequency: time integration + shooting, response of [steady] and
+                             # Floquet stability; "response_observed": the response over the last
+                             # 4 integrated periods, which differs where period 1 is unstable),
+                             # "forced" (the whole AFC of [steady]: peak, folds),
+                             # or "simulate" (the nonsmooth time simulation: extremes, period, events)
+    # a grid (Cartesian product, first key slowest) ...
+    grid = { "driver.cam.amplitude" = [1e-4, 4.7e-4], "driver.cam.omega" = { start = 20.0, stop = 80.0, points = 50 } }
+    # ... or an explicit list of points
+    # points = [ { "driver.cam.amplitude" = 1e-4, "driver.cam.omega" = 54.15 }, ... ]
+    periods = 300            # "steady": at most this many forcing periods of time integration before shooting
+
+A key is a dotted path into the model file: ``table.key`` (``steady.harmonics``), or for arrays of
+tables ``array.NAME.key`` (the entry with ``name = NAME``) or ``array.INDEX.key`` (0-based).  A path
+that names no existing table/entry, or a key the model does not accept, is rejected before anything
+runs.
+
+Execution: each point is an independent pure function of (model, values) -- results do not depend on
+the number of workers or the order of completion.  Every finished point is written at once to
+``OUT/points/NNNNNN.json`` (atomic rename); ``--resume OUT`` skips the points already written with
+status "ok" (failed points are retried).  A failing point is recorded with its error and the sweep goes
+on; the exit code is 1 if any point failed, 2 for bad input or an unreachable scheduler, 0 otherwise.
+"""
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+import os
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from discrete.errors import ModelError
+
+SWEEP_KEYS = {"analysis", "grid", "points", "periods"}
+ANALYSES = ("steady", "forced", "simulate")
+
+
+# ------------------------------------------------------------------ definition
+def _values(spec, key):
+    where = f"[sweep] grid.{key}"
+    if isinstance(spec, list):
+        if not spec:
+            raise ModelError(where, key, spec, "a non-empty list of values")
+        return list(spec)
+    if isinstance(spec, dict):
+        unknown = set(spec) - {"start", "stop", "points", "spacing"}
+        if unknown:
+            raise ModelError(where, sorted(unknown)[0], spec[sorted(unknown)[0]], "start, stop, points, spacing")
+        try:
+            a, b, n = float(spec["start"]), float(spec["stop"]), int(spec["points"])
+        except (KeyError, TypeError, ValueError):
+            raise ModelError(where, key, spec, "{ start = .., stop = .., points = N }") from None
+        if n < 1:
+            raise ModelError(where, "points", n, "an integer >= 1")
+        sp = spec.get("spacing", "linear")
+        if sp == "log":
+            if a <= 0 or b <= 0:
+                raise ModelError(where, "start", a, "positive start and stop for spacing = 'log'")
+            return [float(x) for x in np.geomspace(a, b, n)]
+        if sp != "linear":
+            raise ModelError(where, "spacing", sp, "'linear' | 'log'")
+        return [float(x) for x in np.linspace(a, b, n)]
+    raise ModelError(where, key, spec, "a list of values or { start, stop, points }")
+
+
+def _locate(doc: dict, path: str):
+    """(container, key) for a dotted path; raises ModelError naming the path if it does not exist."""
+    parts = path.split(".")
+    where = "[sweep]"
+    if len(parts) < 2:
+        raise ModelError(where, path, None, "a dotted model key such as 'driver.cam.omega' or 'steady.harmonics'")
+    head = parts[0]
+    if head not in doc:
+        raise ModelError(where, path, None, f"a key of an existing table; the model has {sorted(doc)}")
+    obj = doc[head]
+    rest = parts[1:]
+    if isinstance(obj, list):
+        if len(rest) < 2:
+            raise ModelError(where, path, None, f"'{head}.NAME.key' or '{head}.INDEX.key' for the array [[{head}]]")
+        sel = rest[0]
+        match = [t for t in obj if isinstance(t, dict) and str(t.get("name")) == sel]
+        if not match and sel.isdigit() and int(sel) < len(obj):
+            match = [obj[int(sel)]]
+        if not match:
+            names = [t.get("name", i) for i, t in enumerate(obj)]
+            raise ModelError(where, path, None, f"an entry of [[{head}]] by name or index: {names}")
+        obj, rest = match[0], rest[1:]
+    for p in rest[:-1]:
+        if not isinstance(obj, dict) or p not in obj or not isinstance(obj[p], dict):
+            raise ModelError(where, path, None, "an existing (sub)table")
+        obj = obj[p]
+    if not isinstance(obj, dict):
+        raise ModelError(where, path, None, "a key inside a table")
+    return obj, rest[-1]
+
+
+def apply(doc: dict, values: dict) -> dict:
+    d = copy.deepcopy(doc)
+    d.pop("sweep", None)
+    for path, v in values.items():
+        obj, key = _locate(d, path)
+        obj[key] = v
+    return d
+
+
+def parse_sweep(doc: dict):
+    sw = doc.get("sweep")
+    if not isinstance(sw, dict):
+        raise ModelError("model file", "sweep", sw, "a table [sweep] (grid = {..} or points = [..])")
+    unknown = set(sw) - SWEEP_KEYS
+    if unknown:
+        k = sorted(unknown)[0]
+        raise ModelError("[sweep]", k, sw[k], f"one of {sorted(SWEEP_KEYS)}")
+    analysis = sw.get("analysis", "steady")
+    if analysis not in ANALYSES:
+        raise ModelError("[sweep]", "analysis", analysis, " | ".join(repr(a) for a in ANALYSES))
+    if ("grid" in sw) == ("points" in sw):
+        raise ModelError("[sweep]", "grid", sw.get("grid"), "exactly one of grid = {..} or points = [..]")
+    if "grid" in sw:
+        g = sw["grid"]
+        if not isinstance(g, dict) or not g:
+            raise ModelError("[sweep]", "grid", g, "a non-empty table of key = values")
+        keys = list(g)
+        vals = [_values(g[k], k) for k in keys]
+        pts = [dict(zip(keys, combo)) for combo in itertools.product(*vals)]
+    else:
+        p = sw["points"]
+        if not isinstance(p, list) or not p or not all(isinstance(x, dict) and x for x in p):
+            raise ModelError("[sweep]", "points", p, "a non-empty list of tables { key = value, .. }")
+        pts = [dict(x) for x in p]
+    periods = sw.get("periods", 300)
+    if isinstance(periods, bool) or not isinstance(periods, int) or periods < 1:
+        raise ModelError("[sweep]", "periods", periods, "an integer >= 1")
+    # validate every key path on the model (and the values by building the first point's model)
+    base = {k: v for k, v in doc.items() if k != "sweep"}
+    for path in {k for pt in pts for k in pt}:
+        _locate(copy.deepcopy(base), path)
+    return {"analysis": analysis, "points": pts, "periods": periods}
+
+
+def _check_model(doc: dict, analysis: str):
+    """Build the model of the first point so bad keys/values fail before the sweep starts."""
+    if analysis in ("steady", "forced"):
+        from discrete.steady import SteadyModel
+
+        SteadyModel(doc)
+    else:
+        from discrete.nonsmooth import build_problem
+
+        build_problem(_time_doc(doc))
+
+
+# ------------------------------------------------------------------ one point
+def evaluate_point(doc: dict, values: dict, analysis: str, periods: int = 300) -> dict:
+    """Evaluate one sweep point; never raises (errors are returned as a record).  BLAS is limited to
+    one thread while the point runs (threadpoolctl, if installed), so serial and parallel runs take the
+    same floating-point paths and give bit-identical results."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover
+        return _evaluate(doc, values, analysis, periods)
+    with threadpool_limits(limits=1):
+        return _evaluate(doc, values, analysis, periods)
+
+
+def _evaluate(doc: dict, values: dict, analysis: str, periods: int) -> dict:
+    try:
+        d = apply(doc, values)
+        if analysis == "steady":
+            res = _steady_point(d, periods)
+        elif analysis == "forced":
+            from discrete.steady import run_forced
+
+            r = run_forced(d)
+            w, m = r.peak()
+            res = {"peak_omega_rad_s": w, "peak_response": m, "folds_rad_s": [f["omega"] for f in r.folds],
+                   "jump_intervals_rad_s": [list(j) for j in r.jump_intervals()],
+                   "period_doubling_intervals_rad_s": [list(j) for j in r.unstable_intervals("flip")],
+                   "n_points": int(r.omega.size), "reason": r.reason}
+        else:
+            from discrete.nonsmooth import run_model_file
+
+            r = run_model_file(_time_doc(d))
+            res = {"period": r.period, "energy_error": r.energy_error, "n_events": len(r.events),
+                   "stopped_early": bool(r.stopped_early),
+                   "x_max": {n: float(np.max(r.x[i])) for i, n in enumerate(r.names)},
+                   "x_min": {n: float(np.min(r.x[i])) for i, n in enumerate(r.names)}}
+        return {"values": values, "status": "ok", "result": _clean(res)}
+    except Exception as exc:  # a failed point is a record, not a crash of the sweep
+        return {"values": values, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
+
+
+def _time_doc(d: dict) -> dict:
+    """The model without the steady-state tables (the time simulation does not accept them)."""
+    from discrete.steady import TOP_LEVEL_KEYS
+
+    return {k: v for k, v in d.items() if k not in TOP_LEVEL_KEYS}
+
+
+def _steady_point(d: dict, periods: int) -> dict:
+    from discrete.steady import ShootingModel, SteadyModel
+
+    sm = SteadyModel(d)
+    w = float(sm.problem0.omegas[0])
+    sh = ShootingModel(sm.factory, nu=sm.cfg["subharmonic"], steps_per_period=sm.cfg["steps_per_period"])
+    n = sh.n
+    y, used, settled = sh.settle(np.zeros(n), w, periods=periods, tol=1e-9, scale=np.ones(n))
+    _, res = sh.run(y, w, dense=True, periods=4)
+    p = sh.problem(w)
+    observed = sm.measure(res.t, res.x[p.f], res.v[p.f], w)     # what the time integration shows (4 periods)
+    sc = np.concatenate([np.ptp(res.x[p.f], axis=1), np.ptp(res.v[p.f], axis=1)])
+    sc = np.maximum(sc, 1e-9 * max(float(np.max(sc)), 1e-300))
+    out = {"omega_rad_s": w, "periods_integrated": used, "settled": bool(settled), "response_observed": observed}
+    try:
+        y, _ = sh.solve(y, w, sc)
+        mu = sh.floquet(y, w, sc)
+        _, res = sh.run(y, w, dense=True)
+        out.update(converged=True, max_multiplier=float(np.max(np.abs(mu))),
+                   stable=bool(np.max(np.abs(mu)) < 1 + 1e-6))
+    except Exception as exc:
+        out.update(converged=False, shooting_error=f"{type(exc).__name__}: {exc}")
+    out["response"] = sm.measure(res.t, res.x[p.f], res.v[p.f], w)
+    return out
+
+
+def _clean(o):
+    if isinstance(o, dict):
+        return {str(k): _clean(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_clean(v) for v in o]
+    if isinstance(o, (np.floating, float)):
+        return None if not math.isfinite(float(o)) else float(o)
+    if isinstance(o, (np.integer,)):
+        return int(o)
+    if isinstance(o, np.bool_):
+        return bool(o)
+    return o
+
+
+# ------------------------------------------------------------------ storage
+def _point_path(out: Path, i: int) -> Path:
+    return out / "points" / f"{i:06d}.json"
+
+
+def _write_point(out: Path, i: int, rec: dict) -> None:
+    path = _point_path(out, i)
+    tmp = path.with_suffix(".tmp")
+    with open(tmp, "w") as fh:
+        json.dump({"index": i, **rec}, fh, indent=1, sort_keys=True)
+    os.replace(tmp, path)
+
+
+def _done(out: Path, n: int) -> set:
+    done = set()
+    for i in range(n):
+        p = _point_path(out, i)
+        if p.exists():
+            try:
+                with open(p) as fh:
+                    if json.load(fh).get("status") == "ok":
+                        done.add(i)
+            except (OSError, json.JSONDecodeError):
+                pass
+    return done
+
+
+def collect(out: Path, n: int) -> list:
+    recs = []
+    for i in range(n):
+        p = _point_path(out, i)
+        if p.exists():
+            with open(p) as fh:
+                recs.append(json.load(fh))
+        else:
+            recs.append({"index": i, "status": "missing"})
+    return recs
+
+
+# ------------------------------------------------------------------ driver
+def _dask():
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise ModelError("drivefem sweep", "dask", None,
+                         'the dask.distributed package: pip install "dask[distributed]"') from exc
+    return Client, LocalCluster, as_completed
+
+
+def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=None, workers=None,
+              progress: bool = True, stream=None) -> int:
+    """Run the sweep of ``model_path``.  ``workers``: size of the in-process local cluster (default: the
+    CPU count); ``workers = 0`` runs serially without Dask.  Returns the exit code."""
+    stream = stream or sys.stderr
+    try:
+        with open(model_path, "rb") as fh:
+            doc = tomllib.load(fh)
+        spec = parse_sweep(doc)
+        base = {k: v for k, v in doc.items() if k != "sweep"}
+        _check_model(apply(base, spec["points"][0]), spec["analysis"])
+    except (ModelError, OSError, tomllib.TOMLDecodeError) as exc:
+        print(f"error: {exc}", file=stream)
+        return 2
+    except Exception as exc:
+        print(f"error: the first sweep point's model is invalid: {type(exc).__name__}: {exc}", file=stream)
+        return 2
+    pts = spec["points"]
+    n = len(pts)
+    outdir = Path(resume or out or (Path(model_path).stem + "-sweep"))
+    if resume and not Path(resume).is_dir():
+        print(f"error: --resume {resume!r}: not a directory of an earlier sweep", file=stream)
+        return 2
+    (outdir / "points").mkdir(parents=True, exist_ok=True)
+    meta = {"model": str(model_path), "analysis": spec["analysis"], "n_points": n, "points": pts}
+    mp = outdir / "sweep.json"
+    if mp.exists():
+        with open(mp) as fh:
+            old = json.load(fh)
+        if old.get("points") != json.loads(json.dumps(pts)) or old.get("analysis") != spec["analysis"]:
+            print(f"error: {outdir} holds a different sweep (points or analysis changed); use another --out",
+                  file=stream)
+            return 2
+    else:
+        with open(mp, "w") as fh:
+            json.dump(meta, fh, indent=1)
+    done = _done(outdir, n)
+    todo = [i for i in range(n) if i not in done]
+    print(f"sweep: {n} points, {len(done)} already done in {outdir}, {len(todo)} to run", file=stream)
+    bar = None
+    if progress:
+        try:
+            from tqdm import tqdm
+
+            bar = tqdm(total=n, initial=len(done), desc="sweep", unit="pt", file=stream)
+        except ImportError:  # pragma: no cover
+            bar = None
+    failed = 0
+    try:
+        if workers == 0 and scheduler is None:
+            for i in todo:
+                rec = evaluate_point(base, pts[i], spec["analysis"], spec["periods"])
+                _write_point(outdir, i, rec)
+                failed += rec["status"] != "ok"
+                if bar:
+                    bar.update(1)
+        elif todo:
+            try:
+                Client, LocalCluster, as_completed = _dask()
+            except ModelError as exc:
+                print(f"error: {exc}", file=stream)
+                return 2
+            cluster = None
+            try:
+                if scheduler:
+                    try:
+                        client = Client(scheduler, timeout="5s")
+                    except Exception as exc:
+                        print(f"error: cannot reach the Dask scheduler at {scheduler!r}: {type(exc).__name__}: {exc}",
+                              file=stream)
+                        return 2
+                else:
+                    nw = int(workers or os.cpu_count() or 1)
+                    # one single-threaded process per core: the solvers are small-matrix numpy, and BLAS
+                    # threads inside each worker would only compete for the same cores
+                    one = {k: "1" for k in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
+                    cluster = LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, host="127.0.0.1",
+                                           dashboard_address=None, silence_logs=40, env=one)
+                    client = Client(cluster)
+                try:
+                    bdoc = client.scatter(base, broadcast=True)
+                    # bounded queue: at most 2 tasks per worker in flight, the next point submitted as one
+                    # finishes -- dynamic load balancing (point costs differ by 10x near resonances)
+                    nwk = max(1, len(client.scheduler_info().get("workers", {})) or 1)
+                    queue = iter(todo)
+                    futs = {}
+                    ac = as_completed()
+
+                    def submit_next():
+                        i = next(queue, None)
+                        if i is None:
+                            return
+                        f = client.submit(evaluate_point, bdoc, pts[i], spec["analysis"], spec["periods"],
+                                          key=f"sweep-point-{i}-{os.getpid()}-{id(outdir)}", pure=False)
+                        futs[f] = i
+                        ac.add(f)
+
+                    for _ in range(2 * nwk):
+                        submit_next()
+                    for fut in ac:
+                        i = futs.pop(fut)
+                        try:
+                            rec = fut.result()
+                        except Exception as exc:   # worker lost etc.
+                            rec = {"values": pts[i], "status": "error", "error": f"{type(exc).__name__}: {exc}"}
+                        _write_point(outdir, i, rec)
+                        failed += rec["status"] != "ok"
+                        if bar:
+                            bar.update(1)
+                        submit_next()
+                finally:
+                    client.close()
+            finally:
+                if cluster is not None:
+                    cluster.close()
+    finally:
+        if bar:
+            bar.close()
+    recs = collect(outdir, n)
+    bad = [r for r in recs if r.get("status") != "ok"]
+    for r in bad:
+        print(f"point {r['index']} {r.get('values')}: {r.get('status')}: {r.get('error', '')}", file=stream)
+    summary = {"model": str(model_path), "analysis": spec["analysis"], "out": str(outdir), "n_points": n,
+               "n_ok": n - len(bad), "n_failed": len(bad), "points": recs}
+    if json_path:
+        Path(json_path).parent.mkdir(parents=True, exist_ok=True)
+        with open(json_path, "w") as fh:
+            json.dump(summary, fh, indent=1)
+    print(f"sweep: {n - len(bad)} of {n} points ok" + (f", {len(bad)} failed" if bad else ""), file=stream)
+    return 1 if bad else 0
