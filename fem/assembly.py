@@ -38,6 +38,12 @@ class FEModel:
         return x[order], np.asarray(q)[idx[order]]
 
 
+def _diagonal(entries: dict, n: int) -> sp.csr_matrix:
+    idx = np.fromiter(entries.keys(), dtype=int, count=len(entries))
+    val = np.fromiter(entries.values(), dtype=float, count=len(entries))
+    return sp.csr_matrix((val, (idx, idx)), shape=(n, n))
+
+
 def _rigid_modes(fields, dof_x, model_fields, held) -> np.ndarray:
     """Rigid-body motions allowed by the supports and springs: rods a uniform u/theta,
     beams the translation w = 1 and the rotation w = x (slope 1), restricted to the
@@ -81,7 +87,12 @@ def assemble(model: ShaftModel) -> FEModel:
     else:
         basis, K, M, H, fields = _assemble_timoshenko(model, mesh, m, loss)
     dof_x = basis.doflocs[0].copy()
-    K, M = K.tolil(), M.tolil()
+    add_M, add_K = {}, {}      # diagonal additions of point attachments and spring supports
+
+    def add(table: dict, i: int, value: float) -> None:
+        if value:
+            table[i] = table.get(i, 0.0) + value
+
     primary, rotation = model.fields[0], (model.fields[1] if len(model.fields) > 1 else None)
 
     def at(x: float, field: str) -> int:
@@ -90,12 +101,12 @@ def assemble(model: ShaftModel) -> FEModel:
 
     for p in model.points:
         i = at(p.x, primary)
-        M[i, i] += p.mass if model.physics != "torsion" else p.inertia
-        K[i, i] += p.k
+        add(add_M, i, p.mass if model.physics != "torsion" else p.inertia)
+        add(add_K, i, p.k)
         if rotation is not None:
             j = at(p.x, rotation)
-            M[j, j] += p.inertia
-            K[j, j] += p.kr
+            add(add_M, j, p.inertia)
+            add(add_K, j, p.kr)
     constrained, sprung = [], []
     for p in model.points:
         sprung += [at(p.x, primary)] * bool(p.k) + ([at(p.x, rotation)] * bool(p.kr) if rotation else [])
@@ -106,14 +117,16 @@ def assemble(model: ShaftModel) -> FEModel:
             constrained.append(at(s.x, "w"))
         else:
             i = at(s.x, primary)
-            K[i, i] += s.k
+            add(add_K, i, s.k)
             sprung += [i] * bool(s.k)
             if rotation is not None:
                 j = at(s.x, rotation)
-                K[j, j] += s.kr
+                add(add_K, j, s.kr)
                 sprung += [j] * bool(s.kr)
     rigid = _rigid_modes(fields, dof_x, model.fields, constrained + sprung)
-    system = LinearSystem(M=M.tocsr(), K=K.tocsr(), H=H, dof_field=fields, dof_x=dof_x,
+    M = sp.csr_matrix(M) + _diagonal(add_M, basis.N)
+    K = sp.csr_matrix(K) + _diagonal(add_K, basis.N)
+    system = LinearSystem(M=M, K=K, H=H, dof_field=fields, dof_x=dof_x,
                           constrained=np.array(constrained, dtype=int), rigid_modes=rigid, title=model.title,
                           physics=model.physics if model.physics != "bending" else f"bending ({model.theory})")
     return FEModel(model=model, mesh=mesh, basis=basis, system=system)
