@@ -24,6 +24,8 @@ def _write_json(data: dict, path: str | None) -> None:
 
 
 def _json_default(o):
+    if isinstance(o, (complex, np.complexfloating)):
+        return [float(o.real), float(o.imag)]
     if isinstance(o, np.generic):
         return o.item()
     if isinstance(o, np.ndarray):

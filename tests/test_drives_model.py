@@ -172,7 +172,7 @@ def test_distributed_discrete_reference_is_exact_tm():
 
 
 def test_runner_json_and_exit_codes(tmp_path, capsys):
-    from fem.drives.cli import main
+    from fem.cli import main
 
     out = tmp_path / "m.json"
     assert main(["modal", str(EX / "drive_regular.toml"), "--json", str(out)]) == 0

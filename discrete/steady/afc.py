@@ -342,6 +342,20 @@ class SteadyModel:
         return float(val / r["scale"])
 
 
+
+def _record_stability(mu, max_multiplier: list, critical: list, stable: list) -> None:
+    """Append the largest Floquet multiplier modulus, the real part of the critical multiplier
+    (sign: fold +1 / period doubling -1) and stability (|mu| < 1 + 1e-6); NaN / True when the
+    stability was not computed (``mu`` is None)."""
+    if mu is None:
+        max_multiplier.append(np.nan)
+        critical.append(np.nan)
+        stable.append(True)
+        return
+    max_multiplier.append(float(np.max(np.abs(mu))))
+    critical.append(float(mu[np.argmax(np.abs(mu))].real))
+    stable.append(max_multiplier[-1] < 1 + 1e-6)
+
 def _hb_curve(sm: SteadyModel) -> AFCResult:
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg["harmonics"], nu=cfg["subharmonic"], samples=cfg["samples"])
@@ -378,15 +392,7 @@ def _hb_curve(sm: SteadyModel) -> AFCResult:
         states.append(x)
         om.append(w)
         resp.append(sm.measure(t, q, v, w))
-        if cfg["stability"]:
-            mu = floquet_hb(hb, x, w)
-            mm.append(float(np.max(np.abs(mu))))
-            crit.append(float(mu[np.argmax(np.abs(mu))].real))
-            stab.append(mm[-1] < 1 + 1e-6)
-        else:
-            mm.append(np.nan)
-            crit.append(np.nan)
-            stab.append(True)
+        _record_stability(floquet_hb(hb, x, w) if cfg["stability"] else None, mm, crit, stab)
     folds = []
     for i, wf, fr in br.folds:
         try:
@@ -433,15 +439,7 @@ def _shooting_curve(sm: SteadyModel) -> AFCResult:
         resp.append(_shoot_measure(sm, sh, x, w))
         states.append(x)
         om.append(w)
-        if cfg["stability"]:
-            mu = sh.floquet(x, w, sc)
-            mm.append(float(np.max(np.abs(mu))))
-            crit.append(float(mu[np.argmax(np.abs(mu))].real))
-            stab.append(mm[-1] < 1 + 1e-6)
-        else:
-            mm.append(np.nan)
-            crit.append(np.nan)
-            stab.append(True)
+        _record_stability(sh.floquet(x, w, sc) if cfg["stability"] else None, mm, crit, stab)
     folds = []
     for i, wf, fr in br.folds:
         try:
