@@ -145,34 +145,34 @@ def pseudo_medium_rigid(L, GI, rho, M_total, ratio, r: int) -> float:
     return np.pi * (2 * r - 1) / 2 * np.sqrt(GI / L / (rho * L + M_total * ratio**2))
 
 
-def pseudo_medium_forced_corrected(x, omega, L, GI, rho, M_total, ratio, k, F_total):
-    """Corrected (10.58)-(10.61): Y_* = -(nF/L) Pi'/(w^2 [rho0 (1 - w^2/k^2) + m_bar Pi'^2]);
-    rho(w) > 0: Y = Y_*[1 - cos sx - tan(sL) sin sx]; rho(w) < 0: Y = Y_*[1 - ch s0x + th(s0L) sh s0x]."""
+def _pseudo_medium_forced_parameters(omega, L, GI, rho, M_total, ratio, k, F_total):
+    """Particular amplitude Y_* of (10.58), wavenumber s (rho(w) > 0, trigonometric) or s0
+    (rho(w) < 0, hyperbolic) of the pseudo-medium with rho(w) = rho0 + m_bar Pi'^2/(1 - w^2/k^2)."""
     fbar, mbar = F_total / L, M_total / L
     w2 = omega**2
     rho_w = rho + mbar * ratio**2 / (1 - w2 / k**2)
     Ys = -fbar * ratio / (w2 * (rho * (1 - w2 / k**2) + mbar * ratio**2))
+    return Ys, omega * np.sqrt(abs(rho_w) / GI), bool(rho_w > 0)
+
+
+def pseudo_medium_forced_corrected(x, omega, L, GI, rho, M_total, ratio, k, F_total):
+    """Corrected (10.58)-(10.61): Y_* = -(nF/L) Pi'/(w^2 [rho0 (1 - w^2/k^2) + m_bar Pi'^2]);
+    rho(w) > 0: Y = Y_*[1 - cos sx - tan(sL) sin sx]; rho(w) < 0: Y = Y_*[1 - ch s0x + th(s0L) sh s0x]."""
+    Ys, s, trig = _pseudo_medium_forced_parameters(omega, L, GI, rho, M_total, ratio, k, F_total)
     x = np.asarray(x, float)
-    if rho_w > 0:
-        s = omega * np.sqrt(rho_w / GI)
+    if trig:
         return Ys * (1 - np.cos(s * x) - np.tan(s * L) * np.sin(s * x))
-    s0 = omega * np.sqrt(-rho_w / GI)
-    return Ys * (1 - np.cosh(s0 * x) + np.tanh(s0 * L) * np.sinh(s0 * x))
+    return Ys * (1 - np.cosh(s * x) + np.tanh(s * L) * np.sinh(s * x))
 
 
 def pseudo_medium_forced_printed(x, omega, L, GI, rho, M_total, ratio, k, F_total):
     """The book's PRINTED (10.59)-(10.61) (with the n/L factor restored so that only the shape
     differs): Y = -Y_*(cos sx + tg sL sin sx) (rho > 0), Y = Y_*(ch s0x - th s0L sh s0x) (rho < 0)."""
-    fbar, mbar = F_total / L, M_total / L
-    w2 = omega**2
-    rho_w = rho + mbar * ratio**2 / (1 - w2 / k**2)
-    Ys = -fbar * ratio / (w2 * (rho * (1 - w2 / k**2) + mbar * ratio**2))
+    Ys, s, trig = _pseudo_medium_forced_parameters(omega, L, GI, rho, M_total, ratio, k, F_total)
     x = np.asarray(x, float)
-    if rho_w > 0:
-        s = omega * np.sqrt(rho_w / GI)
+    if trig:
         return -Ys * (np.cos(s * x) + np.tan(s * L) * np.sin(s * x))
-    s0 = omega * np.sqrt(-rho_w / GI)
-    return Ys * (np.cosh(s0 * x) - np.tanh(s0 * L) * np.sinh(s0 * x))
+    return Ys * (np.cosh(s * x) - np.tanh(s * L) * np.sinh(s * x))
 
 
 # ----------------------------------------------------------------- Table 10.1
