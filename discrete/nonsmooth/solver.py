@@ -156,26 +156,24 @@ class EventDrivenSolver:
         x, xd = self.p.full_state(q[:, None], v[:, None], e[:, None])
         return {n: {"x": float(x[i, 0]), "v": float(xd[i, 0])} for i, n in enumerate(self.p.names)}
 
-    def _project_velocity(self, t, z, i, target):
-        """Set s'_i to ``target`` with the smallest kinetic-energy change (mass-weighted projection)."""
+    def _project(self, t, z, i, target, velocity: bool):
+        """Set s'_i (``velocity``) or s_i to ``target`` with the smallest mass-weighted change of the
+        velocities or positions (the kinetic-energy-minimal projection along M^-1 g_i)."""
         p = self.p
         q, v, e = self._split(z)
         g = p.gf[i]
-        sd = g @ v + p.gve[i] @ e
+        current = g @ v + p.gve[i] @ e if velocity else g @ q + p.ge[i] @ e
         Mig = np.linalg.solve(p.mass(t), g)
         z = z.copy()
-        z[p.nf:2 * p.nf] += Mig * (target - sd) / (g @ Mig)
+        part = slice(p.nf, 2 * p.nf) if velocity else slice(0, p.nf)
+        z[part] += Mig * (target - current) / (g @ Mig)
         return z
 
+    def _project_velocity(self, t, z, i, target):
+        return self._project(t, z, i, target, velocity=True)
+
     def _project_position(self, t, z, i, target):
-        p = self.p
-        q, v, e = self._split(z)
-        g = p.gf[i]
-        s = g @ q + p.ge[i] @ e
-        Mig = np.linalg.solve(p.mass(t), g)
-        z = z.copy()
-        z[:p.nf] += Mig * (target - s) / (g @ Mig)
-        return z
+        return self._project(t, z, i, target, velocity=False)
 
     def _consistent_mode(self, t, z, mode, limits=None):
         """Release sticking frictions (|lam| above their limit) and persistent contacts (lam < 0),
