@@ -127,6 +127,10 @@ class LinearSystem:
 
     # ------------------------------------------------------------ matrices
     def free_block(self, A: sp.spmatrix) -> sp.csr_matrix:
+        """Rows and columns of the free DOFs (A itself, not a copy, when nothing is
+        constrained: treat the result as read-only)."""
+        if self.constrained.size == 0:
+            return sp.csr_matrix(A)
         f = self.free
         return sp.csr_matrix(A[f][:, f])
 
@@ -137,6 +141,8 @@ class LinearSystem:
     def expand(self, q_free: np.ndarray, q_constrained: np.ndarray | None = None) -> np.ndarray:
         """Full-length vector(s) from values on the free DOFs (constrained ones zero unless given)."""
         q_free = np.asarray(q_free)
+        if self.constrained.size == 0 and q_constrained is None:
+            return q_free.copy()
         shape = (self.n_dofs,) + q_free.shape[1:]
         out = np.zeros(shape, dtype=q_free.dtype if q_constrained is None else np.result_type(q_free, q_constrained))
         out[self.free] = q_free

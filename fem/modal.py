@@ -29,10 +29,13 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from threadpoolctl import threadpool_limits
 
 from discrete.errors import ModelError, SolverError
 from discrete.linear_system import LinearSystem
+
+from .blas import single_threaded_blas
+from .seeded import seeded_eigenpairs
+from .shifted import ShiftedSolver
 
 EPS = np.finfo(float).eps
 
@@ -92,8 +95,13 @@ def lambda_scale(K: sp.spmatrix, M: sp.spmatrix) -> float:
 
 
 def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | None = None,
-                   tolerance: float = 1e-5, dense_max: int = 12) -> ModalResult:
-    """Lowest ``n_modes`` natural frequencies and mass-normalised mode shapes of ``system``."""
+                   tolerance: float = 1e-5, dense_max: int = 12, seeds=None, seed_vectors=None) -> ModalResult:
+    """Lowest ``n_modes`` natural frequencies and mass-normalised mode shapes of ``system``.
+
+    ``seeds``: estimates of the lowest ``n_modes + 1`` eigenvalues (rad^2/s^2), optionally with
+    estimated vectors ``seed_vectors`` (one row per seed over the free DOFs), for spectra that
+    crowd (drives of many mechanisms): the certified seeded solver :mod:`fem.seeded` is used,
+    and shift-invert Lanczos below the seeds if it cannot certify its result."""
     n = system.n_free
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n:
         raise ModelError("[analysis]", "modes", n_modes, f"an integer from 1 to {n} (the number of free DOFs)")
@@ -110,21 +118,29 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     # whose dominant eigenvalues are the ones wanted); the dense solver's error is
     # eps*lam_max in absolute terms, so it is used only for tiny systems or when (almost)
     # all modes are wanted, which ARPACK cannot deliver.
+    notes = []
     if (n <= dense_max or n_modes >= n - 1) and _is_positive_definite(M):
         lam, vec = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1])
         method, sigma = "dense eigh(K, M)", 0.0
+    elif seeds is not None and not n_rigid:
+        lam, vec, sigma, method, notes = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max, rigid_level)
     else:
         lam, vec, sigma = _shift_invert(K, M, n_modes, shift, lam_max, rigid_level, n_rigid)
         method = "sparse shift-invert Lanczos (eigsh)"
     order = np.argsort(lam)
-    lam, vec = lam[order], vec[:, order]
-    mnorm = np.sqrt(np.einsum("ij,ij->j", vec, M @ vec))
-    vec = vec / mnorm
-    Kv, Mv = K @ vec, M @ vec
-    knorm, mnorm1 = spla.norm(K, 1), spla.norm(M, 1)
-    vnorm = np.linalg.norm(vec, axis=0)
-    residuals = np.linalg.norm(Kv - Mv * lam, axis=0) / ((knorm + np.abs(lam) * mnorm1) * vnorm)
+    if np.any(order != np.arange(lam.size)):
+        lam, vec = lam[order], vec[:, order]
+    Mv = M @ vec
+    scale = 1.0 / np.sqrt(np.einsum("ij,ij->j", vec, Mv))      # mass-normalise
+    if np.any(np.abs(scale - 1.0) > 1e-13):
+        vec = vec * scale
+        Mv *= scale
+    Kv = K @ vec
+    vnorm = np.sqrt(np.einsum("ij,ij->j", vec, vec))
     rq = np.einsum("ij,ij->j", vec, Kv) / np.einsum("ij,ij->j", vec, Mv)
+    Mv *= lam
+    np.subtract(Kv, Mv, out=Kv)
+    residuals = np.sqrt(np.einsum("ij,ij->j", Kv, Kv)) / ((_norm1(K) + np.abs(lam) * _norm1(M)) * vnorm)
     if n_rigid is None:
         rigid = np.abs(lam) <= rigid_level
     else:
@@ -137,6 +153,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     result = ModalResult(omega_rad_s=omega, eigenvalues=lam, shapes=system.expand(vec), residuals=residuals,
                          rayleigh_rel_diff=rq_diff, precision_bound=bound, rigid=rigid, n_dofs=n,
                          method=method, shift=float(sigma), tolerance=tolerance)
+    result.warnings.extend(notes)
     if rigid.any():
         result.warnings.append(f"{int(rigid.sum())} rigid-body mode(s) (free system): reported with omega = 0")
     bad = np.flatnonzero(~result.reliable)
@@ -151,9 +168,35 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     return result
 
 
+def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
+    """The seeded solver, or -- if it cannot certify its result -- shift-invert Lanczos at a
+    shift below the seeds that a Sylvester count shows to lie below the lowest eigenvalue."""
+    try:
+        sol = seeded_eigenpairs(K, M, seeds, k, start=seed_vectors)
+        notes = [] if sol.contamination.max() < 1e-6 else [
+            f"seeded solver: vectors contaminated up to {sol.contamination.max():.1e} by neighbouring modes"]
+        return sol.eigenvalues, sol.vectors, float(np.min(seeds)), sol.describe(), notes
+    except SolverError as exc:
+        note = f"seeded solver not used ({exc}); shift-invert Lanczos below the seeds instead"
+    counter = ShiftedSolver(K, M)
+    sigma = 0.99 * float(np.min(seeds))
+    for _ in range(60):
+        if sigma <= 0 or counter.inertia(sigma) == 0:
+            break
+        sigma *= 0.5
+    lam, vec, sigma = _shift_invert(K, M, k, max(sigma, 0.0) or None, lam_max, rigid_level, 0)
+    return lam, vec, sigma, "sparse shift-invert Lanczos (eigsh)", [note]
+
+
+def _norm1(A: sp.spmatrix) -> float:
+    """Largest column sum of |A| (the 1-norm)."""
+    A = sp.csr_matrix(A)
+    return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
+
+
 def _is_diagonal(A: sp.spmatrix) -> bool:
-    A = sp.coo_matrix(A)
-    return bool(np.all(A.row == A.col))
+    A = sp.csr_matrix(A)
+    return bool(np.array_equal(A.indices, np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))))
 
 
 def _is_positive_definite(M: sp.spmatrix) -> bool:
@@ -174,13 +217,12 @@ def _factor(A: sp.spmatrix):
 
 
 def _eigsh(K, M, k, sigma, lu, tol=0.0):
-    """ARPACK in shift-invert mode.  Its dense kernels are tiny (n x ncv), so BLAS threads only
-    add synchronisation: measured 11 ms with one thread against 100 ms with two on a busy
-    2-core machine for 2000 DOFs; the solve runs single-threaded."""
+    """ARPACK in shift-invert mode; its dense kernels are tiny (n x ncv), so the solve runs
+    with single-threaded BLAS (:mod:`fem.blas`)."""
     n = K.shape[0]
     op = spla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
     ncv = min(n, max(2 * k + 1, 20))
-    with _warnings.catch_warnings(), threadpool_limits(limits=1, user_api="blas"):
+    with _warnings.catch_warnings(), single_threaded_blas():
         _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
         v0 = np.random.default_rng(12345).uniform(0.5, 1.5, n)  # fixed start: reproducible results
         return spla.eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol, ncv=ncv, v0=v0)

@@ -22,6 +22,7 @@ from discrete.transfer.continuum import pseudo_medium_forced, pseudo_medium_freq
 from .continuum import build_continuum
 from .discrete import build_discrete
 from .model import DistributedShaft, DriveModel, parse_drive
+from .seeding import continuum_estimates, seedable
 from .tm import build_chain
 
 ANALYSIS_KEYS = {"type", "modes", "omega_rad_s", "frequencies_hz", "sweep_hz", "convergence_n"}
@@ -98,24 +99,16 @@ def _eig_above(system, sigma: float, R: int) -> np.ndarray:
     return np.sqrt(np.sort(lam))
 
 
-def _safe_shift(model: DriveModel, system) -> float | None:
-    """Shift for the sparse solver just below the lowest natural frequency: the continuum
-    estimate of p_1 times 0.99, lowered until the transfer-matrix count confirms that no root
-    lies below it (so shift-invert still returns the lowest modes).  Separating the wanted
-    modes from the crowd of lower-branch roots at k speeds up Lanczos ~3x for n ~ 1000.
-    None (default shift) for small systems and free-free drives."""
-    from discrete.transfer import count_below
+def fe_modes(model: DriveModel, system, n_modes: int):
+    """Sparse FE modal analysis of the discrete drive.  Large drives crowd their lower-branch
+    roots below k, where shift-invert Lanczos needs hundreds of iterations: there the
+    certified seeded solver starts from the pseudo-medium estimates (:mod:`.seeding`)."""
+    from fem.modal import modal_analysis
 
-    if system.n_free <= 300 or model.boundary == "free-free":
-        return None
-    lo, hi = continuum_roots(model, 1)
-    s = 0.99 * float(min(lo[0], hi[0]))
-    chain, _, _ = build_chain(model)
-    for _ in range(60):
-        if count_below(chain, s)[0] == 0:
-            return s * s
-        s *= 0.5
-    return None
+    if seedable(model, system, n_modes):
+        lam, rows = continuum_estimates(model, system, n_modes + 1)
+        return modal_analysis(system, n_modes, seeds=lam, seed_vectors=rows)
+    return modal_analysis(system, n_modes)
 
 
 # ------------------------------------------------------------------ modal
@@ -204,7 +197,7 @@ def modal(model: DriveModel, n_modes: int, representation: str | None = None) ->
             ref, ref_name = continuum_sorted(model, n_modes), "pseudo-medium closed form (10.50) (exact continuum)"
     elif rep == "discrete":
         dd = build_discrete(model)
-        res = modal_analysis(dd.system, n_modes, shift=_safe_shift(model, dd.system))
+        res = fe_modes(model, dd.system, n_modes)
         omega, resid, ndof = res.omega_rad_s, res.residuals, res.n_dofs
         kind, warn = "FE backward error ||K phi - lam M phi|| / ((||K|| + lam ||M||) ||phi||)", res.warnings
         method = res.method + ("" if reg else f"; shaft P{model.shaft.order}, {model.shaft.elements} el./segment")
@@ -404,7 +397,8 @@ def branch_roots(model: DriveModel, representation: str, R: int) -> tuple[np.nda
         n_y = int(np.count_nonzero(sys_.dof_field[sys_.free] == "y"))
         res = modal_analysis(sys_, min(sys_.n_free, n_y + R + (model.boundary == "free-free")))
         return _branches(res.omega_rad_s, k, R)
-    low = modal_analysis(sys_, R + (model.boundary == "free-free"), shift=_safe_shift(model, sys_)).omega_rad_s
+    low = (fe_modes(model, sys_, R + (model.boundary == "free-free")) if representation == "discrete"
+           else modal_analysis(sys_, R + (model.boundary == "free-free"))).omega_rad_s
     s = model.smeared()
     edge = stop_band(s["rho"], s["m_bar"], s["k"], s["ratio"])[1] if s["rho"] > 0 else k
     return _branches(np.concatenate([low, _eig_above(sys_, edge**2, R)]), k, R)
