@@ -1,23 +1,23 @@
-"""Certified eigenpairs from eigenvalue estimates (seeds): the clustered-spectrum solver.
+"""Certified eigenpairs from eigenvalue estimates (seeds): the crowded-spectrum solver.
 
 A drive with n identical mechanisms has n lower-branch natural frequencies crowding below
 the partial frequency k (§10.4-10.5): for Set C with n = 1000, modes 2..20 lie within
-0.5 % of k and consecutive ones differ by 1e-5 relative.  Shift-invert Lanczos separates
+0.6 % of k and consecutive ones differ by 1e-5 relative.  Shift-invert Lanczos separates
 them only after ~400 iterations (a single pole cannot spread an accumulation point).
-Estimates of the wanted eigenvalues are cheap -- the pseudo-medium roots (10.50) are good
-to O(1/n) in the distance to k -- and turn the problem into one of refinement:
+Estimates of the wanted eigenpairs are cheap -- the pseudo-medium roots (10.50) and shapes
+are good to O(1/n) in the distance to k -- and turn the problem into one of refinement:
 
 1. one shift per estimate; all shifted matrices factorised at once
    (:class:`fem.shifted.ShiftedSolver`);
-2. two steps of inverse iteration from random vectors, each with its own shift, then
-   inverse iteration of the whole block followed by a Rayleigh-Ritz step (which separates vectors drawn to the same eigenvalue); the shifts
-   are moved to the Ritz values when convergence slows (Rayleigh-quotient iteration);
-3. eigenvalues from the shift-invert quotient ``lam = s + v'Mv / v'M (K - sM)^-1 M v``,
-   accurate to rounding relative to ``lam - s`` (as in shift-invert Lanczos), not to
-   ``eps*lam_max`` as the Rayleigh quotient ``v'Kv`` would be;
-4. completeness certified by Sylvester's law: exactly ``n_modes`` eigenvalues below the
-   midpoint of the last wanted and the next computed one.  A failed certificate raises
-   :class:`SolverError` -- no result is ever returned from bad seeds.
+2. inverse iteration of the block, each vector with its own shift, each step followed by a
+   Rayleigh-Ritz step (which separates vectors drawn to the same eigenvalue), from the
+   estimated vectors or from random ones after two plain steps; the shifts move to the
+   Ritz values when convergence slows (Rayleigh-quotient iteration); it stops when one
+   more step would change a wanted vector by less than ``tol`` -- and returns that step;
+3. eigenvalues from rounding-free quotients (:func:`_eigenvalues`);
+4. completeness certified by Sylvester's law of inertia: exactly ``n_modes`` eigenvalues
+   below the midpoint of the last wanted and the next computed one.  A failed certificate
+   raises :class:`SolverError` -- no result is ever returned from bad seeds.
 """
 from __future__ import annotations
 
@@ -44,10 +44,11 @@ class SeededSolution:
     count: int                     # ... equals n_modes
     leaves: int                    # condensed one-DOF attachments
     bandwidth: int                 # of the condensed core
+    shifts: int                    # number of shifts (seeds)
 
     def describe(self) -> str:
         return (f"seeded multi-shift inverse iteration + Rayleigh-Ritz ({self.sweeps} sweeps, "
-                f"{self.refactorisations + 1} factorisations of {self.eigenvalues.size + 1} shifts; "
+                f"{self.refactorisations + 1} factorisations of {self.shifts} shifts; "
                 f"{self.leaves} leaf DOFs condensed, core bandwidth {self.bandwidth}); "
                 f"Sylvester count {self.count} below {self.certificate_shift:.10g} rad^2/s^2")
 
@@ -57,9 +58,9 @@ def seeded_eigenpairs(K: sp.spmatrix, M: sp.spmatrix, seeds_lambda, n_modes: int
     """Lowest ``n_modes`` eigenpairs of K phi = lam M phi from ``n_modes + 1`` (or more)
     eigenvalue estimates ``seeds_lambda`` (rad^2/s^2) and, optionally, estimates of their
     vectors ``start`` (one row per seed; random vectors otherwise).  K positive definite
-    (no rigid-body modes), M positive semi-definite.  ``tol`` bounds the M-norm change
-    of a wanted vector under one inverse iteration (its contamination by other modes); the
-    returned vectors have had one more, the eigenvalue error is of order tol^2 |lam - s|."""
+    (no rigid-body modes), M positive semi-definite.  ``tol`` bounds the estimated
+    contamination of each returned wanted vector by other modes (M-norm): its change under
+    the last measured inverse iteration times the observed contraction per iteration."""
     seeds = np.asarray(seeds_lambda, dtype=float)
     order = np.argsort(seeds)
     seeds = seeds[order]
@@ -132,7 +133,7 @@ def _iterate(K, M, seeds, order, n_modes, start, tol, max_sweeps) -> SeededSolut
                           f"{n_modes}: the estimates missed a mode")
     return SeededSolution(eigenvalues=lam[:n_modes], vectors=V[:n_modes].T.copy(), contamination=left[:n_modes],
                           sweeps=sweep, refactorisations=refactor, certificate_shift=float(sigma), count=count,
-                          leaves=solver.leaves, bandwidth=solver.bandwidth)
+                          leaves=solver.leaves, bandwidth=solver.bandwidth, shifts=q)
 
 
 def _eigenvalues(K: sp.csr_matrix, solver: ShiftedSolver, mass, V: np.ndarray) -> np.ndarray:

@@ -114,16 +114,7 @@ class ShootingModel:
         y = np.array(y0, float)
         sc = np.ones_like(y) if scale is None else scale
         for k in range(1, periods + 1):
-            try:
-                yn = self.map(y, omega)
-            except SolverError:
-                if k > 1 or not np.all(y[self.n // 2:] == 0):
-                    raise
-                # start at rest on a stop of a velocity-dependent friction law: the event-driven solver
-                # can loop on zero-length stop events there (reported upstream); a velocity of 1e-6 of
-                # the scale is a negligible perturbation of the transient
-                y[self.n // 2:] = 1e-6 * sc[self.n // 2:]
-                yn = self.map(y, omega)
+            yn = self.map(y, omega)
             d = np.max(np.abs(yn - y) / sc)
             y = yn
             if d <= tol:
