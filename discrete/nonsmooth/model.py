@@ -8,20 +8,23 @@ springs); gears are eliminated the same way as in the linear part.
 """
 from __future__ import annotations
 
+from functools import partial
 
 import numpy as np
 
 from ..errors import ModelError
 from ..lumped import GROUND, LumpedModel
 from ..schema import check_keys, choice, number, require
-from .elements import Friction, Gap, Impact, OneSided
 from .problem import ExternalForce, MotionLaw, Problem
+from .tables import element_tables
 
 LUMPED_KEYS = {"title", "body", "driver", "spring", "damper", "gear"}
 TOP_LEVEL_KEYS = {"friction", "one_sided", "gap", "impact", "force", "simulation", "constants"}
 SIM_KEYS = {"t_end", "method", "max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "energy",
             "regularisation", "penalty", "memory_time", "output_step"}
 REG_METHODS = ("event", "regularised")
+BODY_KEYS = {"body", "between", "ratios"}      # element coordinate s (see _coordinate)
+WEIGHT_KEYS = {"mu", "mu_static", "normal"}    # [[friction]] normal = "weight"
 
 
 def _coordinate(t: dict, where: str, lm: LumpedModel, names_all: list[str], T: np.ndarray) -> np.ndarray:
@@ -56,11 +59,27 @@ def _coordinate(t: dict, where: str, lm: LumpedModel, names_all: list[str], T: n
     return g_all @ T
 
 
-def _name(t, where, default):
-    n = t.get("name", default)
-    if not isinstance(n, str) or not n:
-        raise ModelError(where, "name", n, "a non-empty string")
-    return n
+def _weight_levels(t: dict, where: str, bodies: dict, grav: float) -> dict | None:
+    """Friction levels mu g m(t), mu_static g m(t) of normal = "weight" (None for normal = "given")."""
+    if choice(t.get("normal", "given"), "normal", where, ("given", "weight")) == "given":
+        for k in ("mu", "mu_static"):
+            if k in t:
+                raise ModelError(where, k, t[k], "only with normal = \"weight\"")
+        return None
+    for k in ("kinetic", "static"):
+        if k in t:
+            raise ModelError(where, k, t[k], "not with normal = \"weight\" (give mu and mu_static)")
+    if "body" not in t:
+        raise ModelError(where, "body", None, "the body whose weight presses the contact (normal = \"weight\")")
+    b = bodies.get(t["body"])
+    if b is None:
+        raise ModelError(where, "body", t["body"], "a body (not a driver) for normal = \"weight\"")
+    mu = number(require(t, "mu", where, "the friction coefficient"), "mu", where, nonnegative=True)
+    mus = number(t.get("mu_static", mu), "mu_static", where, nonnegative=True)
+    if mus < mu:
+        raise ModelError(where, "mu_static", mus, f"a number >= mu = {mu!r}")
+    return dict(kinetic=mu * grav * b.inertia, static=mus * grav * b.inertia, mass0=b.inertia,
+                mass_rate=b.inertia_rate or 0.0)
 
 
 def build_problem(doc: dict):
@@ -115,105 +134,10 @@ def build_problem(doc: dict):
     Mdot = T.T @ np.diag(rates) @ T
     Creact = T.T @ np.diag(react) @ T
 
-    elements, used = [], set()
-
-    def uniq(n, where):
-        if n in used:
-            raise ModelError(where, "name", n, "a name not used by another element")
-        used.add(n)
-        return n
-
-    for i, t in enumerate(doc.get("friction", []), 1):
-        w = f"[[friction]] #{i}"
-        check_keys(t, {"name", "body", "between", "ratios", "kinetic", "static", "mu", "mu_static", "normal",
-                       "viscous", "quadratic", "cubic", "surface_velocity", "restick"}, w)
-        g = _coordinate(t, w, lm, names_all, T)
-        name = uniq(_name(t, w, f"friction{i}"), w)
-        normal = choice(t.get("normal", "given"), "normal", w, ("given", "weight"))
-        mass0 = rate = None
-        if normal == "weight":
-            for k in ("kinetic", "static"):
-                if k in t:
-                    raise ModelError(w, k, t[k], "not with normal = \"weight\" (give mu and mu_static)")
-            if "body" not in t:
-                raise ModelError(w, "body", None, "the body whose weight presses the contact (normal = \"weight\")")
-            b = bodies.get(t["body"])
-            if b is None:
-                raise ModelError(w, "body", t["body"], "a body (not a driver) for normal = \"weight\"")
-            mu = number(require(t, "mu", w, "the friction coefficient"), "mu", w, nonnegative=True)
-            mus = number(t.get("mu_static", mu), "mu_static", w, nonnegative=True)
-            if mus < mu:
-                raise ModelError(w, "mu_static", mus, f"a number >= mu = {mu!r}")
-            kinetic, static = mu * grav * b.inertia, mus * grav * b.inertia
-            mass0, rate = b.inertia, b.inertia_rate
-        else:
-            for k in ("mu", "mu_static"):
-                if k in t:
-                    raise ModelError(w, k, t[k], "only with normal = \"weight\"")
-            kinetic = number(require(t, "kinetic", w, "the kinetic friction level (force or torque)"), "kinetic", w)
-            static = number(t["static"], "static", w) if "static" in t else None
-            if kinetic < 0:
-                raise ModelError(w, "kinetic", kinetic, "a number >= 0")
-            if static is not None and static < kinetic:
-                raise ModelError(w, "static", static, f"a number >= the kinetic level {kinetic!r}")
-        el = Friction(name=name, g=g, kinetic=kinetic, static=static,
-                      viscous=number(t.get("viscous", 0.0), "viscous", w),
-                      quadratic=number(t.get("quadratic", 0.0), "quadratic", w),
-                      cubic=number(t.get("cubic", 0.0), "cubic", w),
-                      surface_velocity=number(t.get("surface_velocity", 0.0), "surface_velocity", w),
-                      restick=choice(t.get("restick", "static"), "restick", w, ("static", "kinetic")),
-                      mass0=mass0, mass_rate=rate or 0.0)
-        elements.append(el)
-
-    for i, t in enumerate(doc.get("one_sided", []), 1):
-        w = f"[[one_sided]] #{i}"
-        check_keys(t, {"name", "body", "between", "ratios", "k", "preload", "side"}, w)
-        g = _coordinate(t, w, lm, names_all, T)
-        name = uniq(_name(t, w, f"one_sided{i}"), w)
-        k = number(require(t, "k", w, "the stiffness"), "k", w)
-        if not k > 0:
-            raise ModelError(w, "k", k, "a number > 0")
-        side = {"tension": 1, "compression": -1}[choice(t.get("side", "tension"), "side", w, ("tension", "compression"))]
-        pre = number(t.get("preload", 0.0), "preload", w)
-        elements.append(OneSided(name=name, g=g, k=k, s_open=-side * pre / k, side=side))
-
-    for i, t in enumerate(doc.get("gap", []), 1):
-        w = f"[[gap]] #{i}"
-        check_keys(t, {"name", "body", "between", "ratios", "k", "delta", "lower", "upper", "law", "L"}, w)
-        g = _coordinate(t, w, lm, names_all, T)
-        name = uniq(_name(t, w, f"gap{i}"), w)
-        k = number(require(t, "k", w, "the contact stiffness"), "k", w)
-        if not k > 0:
-            raise ModelError(w, "k", k, "a number > 0")
-        if "delta" in t:
-            for kk in ("lower", "upper"):
-                if kk in t:
-                    raise ModelError(w, kk, t[kk], "not together with delta (symmetric gap)")
-            d = number(t["delta"], "delta", w, nonnegative=True)
-            lo, up = -d, d
-        else:
-            lo = number(require(t, "lower", w, "the lower clearance bound (or delta)"), "lower", w)
-            up = number(require(t, "upper", w, "the upper clearance bound (or delta)"), "upper", w)
-            if lo > up:
-                raise ModelError(w, "lower", lo, f"a number <= upper = {up!r}")
-        elements.append(Gap(name=name, g=g, k=k, lower=lo, upper=up,
-                            law=choice(t.get("law", "exact"), "law", w, ("exact", "arctan")),
-                            L=number(t.get("L", 1e3), "L", w, positive=True)))
-
-    for i, t in enumerate(doc.get("impact", []), 1):
-        w = f"[[impact]] #{i}"
-        check_keys(t, {"name", "body", "between", "ratios", "stop", "side", "restitution", "v_rest"}, w)
-        g = _coordinate(t, w, lm, names_all, T)
-        name = uniq(_name(t, w, f"impact{i}"), w)
-        e = number(require(t, "restitution", w, "the restitution coefficient"), "restitution", w)
-        if not 0 <= e <= 1:
-            raise ModelError(w, "restitution", e, "a number in [0, 1]")
-        stop = number(t.get("stop", 0.0), "stop", w)
-        side = choice(t.get("side", "lower"), "side", w, ("lower", "upper"))
-        if side == "upper":       # s <= stop  <=>  (-s) >= -stop
-            g, stop = -g, -stop
-        vr = number(t["v_rest"], "v_rest", w, positive=True) if "v_rest" in t else None
-        elements.append(Impact(name=name, g=g, s_min=stop, restitution=e, v_rest=vr))
+    coordinate = partial(_coordinate, lm=lm, names_all=names_all, T=T)
+    elements = [cls(g=g, **kw) for cls, kw, g in element_tables(
+        doc, set(), coordinate, np.negative, BODY_KEYS, one_sided_side="tension", single_bound_gap=False,
+        friction_levels=partial(_weight_levels, bodies=bodies, grav=grav), friction_keys=WEIGHT_KEYS)]
 
     forces = []
     for i, t in enumerate(doc.get("force", []), 1):

@@ -5,7 +5,8 @@ by ``x`` (and ``dof``), a ``[reduction]`` table and ``[simulation]``.  See docs/
 from __future__ import annotations
 
 from discrete.errors import ModelError
-from discrete.nonsmooth import Friction, Gap, Impact, MotionLaw, OneSided
+from discrete.nonsmooth import MotionLaw
+from discrete.nonsmooth.tables import element_tables, unique_name
 from discrete.schema import check_keys, choice, number, require
 
 from ..assembly import assemble
@@ -75,6 +76,11 @@ def _terms(t: dict, where: str) -> list:
     return [(_ref(t, where), ratio)]
 
 
+def _negated(terms: list) -> list:
+    """The terms of -s."""
+    return [(ref, -ratio) for ref, ratio in terms]
+
+
 COORD = {"x", "dof", "body", "between", "ratios", "ratio"}
 
 
@@ -133,80 +139,8 @@ def parse_hybrid(doc: dict) -> tuple[HybridModel, dict]:
             offset=number(t.get("offset", 0.0), "offset", w), velocity=number(t.get("velocity", 0.0), "velocity", w),
             amplitude=amp, omega=om, phase=number(t.get("phase", 0.0), "phase", w))))
     names: set[str] = set()
-
-    def uniq(t, w, default):
-        n = t.get("name", default)
-        if not isinstance(n, str) or not n:
-            raise ModelError(w, "name", n, "a non-empty string")
-        if n in names:
-            raise ModelError(w, "name", n, "a name not used by another element")
-        names.add(n)
-        return n
-
-    for i, t in enumerate(doc.get("friction", []), 1):
-        w = f"[[friction]] #{i}"
-        check_keys(t, COORD | {"name", "kinetic", "static", "viscous", "quadratic", "cubic", "surface_velocity",
-                               "restick"}, w)
-        kin = number(require(t, "kinetic", w, "the kinetic level (force or torque)"), "kinetic", w, nonnegative=True)
-        st = number(t.get("static", kin), "static", w)
-        if st < kin:
-            raise ModelError(w, "static", st, f"a number >= the kinetic level {kin!r}")
-        model.elements.append(ElementSpec(Friction, dict(
-            name=uniq(t, w, f"friction{i}"), kinetic=kin, static=st,
-            viscous=number(t.get("viscous", 0.0), "viscous", w), quadratic=number(t.get("quadratic", 0.0), "quadratic", w),
-            cubic=number(t.get("cubic", 0.0), "cubic", w),
-            surface_velocity=number(t.get("surface_velocity", 0.0), "surface_velocity", w),
-            restick=choice(t.get("restick", "static"), "restick", w, ("static", "kinetic"))), _terms(t, w)))
-    for i, t in enumerate(doc.get("one_sided", []), 1):
-        w = f"[[one_sided]] #{i}"
-        check_keys(t, COORD | {"name", "k", "preload", "side"}, w)
-        k = number(require(t, "k", w, "the stiffness"), "k", w, positive=True)
-        side = {"tension": 1, "compression": -1}[choice(t.get("side", "compression"), "side", w, ("tension", "compression"))]
-        pre = number(t.get("preload", 0.0), "preload", w)
-        model.elements.append(ElementSpec(OneSided, dict(name=uniq(t, w, f"one_sided{i}"), k=k,
-                                                         s_open=-side * pre / k, side=side), _terms(t, w)))
-    for i, t in enumerate(doc.get("gap", []), 1):
-        w = f"[[gap]] #{i}"
-        check_keys(t, COORD | {"name", "k", "delta", "lower", "upper", "law", "L"}, w)
-        k = number(require(t, "k", w, "the contact stiffness"), "k", w, positive=True)
-        if "delta" in t:
-            if "lower" in t or "upper" in t:
-                raise ModelError(w, "delta", t["delta"], "either delta (symmetric) or lower/upper")
-            d = number(t["delta"], "delta", w, nonnegative=True)
-            lo, up = -d, d
-        else:
-            if "lower" not in t and "upper" not in t:
-                raise ModelError(w, "delta", None, "delta = .. or lower = .. / upper = .. (the clearance)")
-            if "lower" in t and "upper" in t:
-                lo, up = number(t["lower"], "lower", w), number(t["upper"], "upper", w)
-                if lo > up:
-                    raise ModelError(w, "lower", lo, f"a number <= upper = {up!r}")
-            else:
-                # a single stop: the one-sided spring k engaged beyond it (exact potential, no infinite bound)
-                if "law" in t or "L" in t:
-                    raise ModelError(w, "law", t.get("law", t.get("L")), "lower and upper (or delta) for law/L")
-                side, stop = (1, number(t["upper"], "upper", w)) if "upper" in t else (-1, number(t["lower"], "lower", w))
-                model.elements.append(ElementSpec(OneSided, dict(name=uniq(t, w, f"gap{i}"), k=k, s_open=stop, side=side),
-                                                  _terms(t, w)))
-                continue
-        model.elements.append(ElementSpec(Gap, dict(name=uniq(t, w, f"gap{i}"), k=k, lower=lo, upper=up,
-                                                    law=choice(t.get("law", "exact"), "law", w, ("exact", "arctan")),
-                                                    L=number(t.get("L", 1e3), "L", w, positive=True)), _terms(t, w)))
-    for i, t in enumerate(doc.get("impact", []), 1):
-        w = f"[[impact]] #{i}"
-        check_keys(t, COORD | {"name", "stop", "side", "restitution", "v_rest"}, w)
-        e = number(require(t, "restitution", w, "the restitution coefficient"), "restitution", w)
-        if not 0 <= e <= 1:
-            raise ModelError(w, "restitution", e, "a number in [0, 1]")
-        stop = number(t.get("stop", 0.0), "stop", w)
-        side = choice(t.get("side", "lower"), "side", w, ("lower", "upper"))
-        terms = _terms(t, w)
-        if side == "upper":
-            terms, stop = [(r, -q) for r, q in terms], -stop
-        kw = dict(name=uniq(t, w, f"impact{i}"), s_min=stop, restitution=e)
-        if "v_rest" in t:
-            kw["v_rest"] = number(t["v_rest"], "v_rest", w, positive=True)
-        model.elements.append(ElementSpec(Impact, kw, terms))
+    model.elements += [ElementSpec(cls, kw, terms) for cls, kw, terms in element_tables(
+        doc, names, _terms, _negated, COORD, one_sided_side="compression", single_bound_gap=True)]
     for i, t in enumerate(doc.get("force", []), 1):
         w = f"[[force]] #{i}"
         check_keys(t, {"x", "dof", "body", "value", "amplitude", "omega", "phase"}, w)
@@ -219,7 +153,7 @@ def parse_hybrid(doc: dict) -> tuple[HybridModel, dict]:
     for i, t in enumerate(doc.get("distributed_friction", []), 1):
         w = f"[[distributed_friction]] #{i}"
         check_keys(t, {"name", "dof", "from", "to", "intensity", "static_intensity", "mu", "radius"}, w)
-        name = uniq(t, w, f"distributed{i}")
+        name = unique_name(t, w, f"distributed{i}", names)
         if ("intensity" in t) == ("mu" in t):
             raise ModelError(w, "intensity", t.get("intensity"),
                              "either intensity = .. (force or torque per length, e.g. f P / l of seed 003) "
