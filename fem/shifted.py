@@ -144,8 +144,16 @@ class ShiftedSolver:
             for r in range(core_rows.shape[0]):
                 np.subtract.at(core_rows[r], self.leaf_core, leaf_rows[r])
 
-    def _core_diagonal_correction(self, a: np.ndarray) -> np.ndarray:
-        return self.leaf_c[None, :] ** 2 / a
+    def _core_diagonal(self, s: np.ndarray, a: np.ndarray) -> np.ndarray:
+        """(q, n_core) diagonal of the condensed cores: K - s M minus a_lc^2 / a_ll from the leaves."""
+        b = self.bandwidth
+        diag = self._kband[2 * b][None, :] - s[:, None] * self._mband[2 * b][None, :]
+        self._scatter_sub(diag, self.leaf_c[None, :] ** 2 / a)
+        return diag
+
+    def _core_subdiagonal(self, s: np.ndarray) -> np.ndarray:
+        """(q, n_core) first subdiagonal of a tridiagonal core (last column: no neighbour)."""
+        return self._kband[3][None, :] - s[:, None] * self._mband[3][None, :]
 
     def factor(self, shifts) -> "ShiftedFactors":
         s = np.atleast_1d(np.asarray(shifts, dtype=float))
@@ -153,11 +161,9 @@ class ShiftedSolver:
         q, nc, b = s.size, self.core_idx.size, self.bandwidth
         if nc == 0:
             return ShiftedFactors(self, s, a, None)
-        diag = self._kband[2 * b][None, :] - s[:, None] * self._mband[2 * b][None, :]
-        self._scatter_sub(diag, self._core_diagonal_correction(a))
+        diag = self._core_diagonal(s, a)
         if b <= 1:
-            off = (self._kband[2 * b + 1][None, :] - s[:, None] * self._mband[2 * b + 1][None, :]) if b == 1 \
-                else np.zeros((q, nc))
+            off = self._core_subdiagonal(s) if b == 1 else np.zeros((q, nc))
             off[:, -1] = 0.0                          # no coupling between stacked blocks
             e = off.ravel()[:-1]
             dl, dd, du, du2, ipiv, info = lapack.dgttrf(e, diag.ravel(), e.copy())
@@ -179,10 +185,9 @@ class ShiftedSolver:
         nc, b = self.core_idx.size, self.bandwidth
         if nc == 0:
             return negative
-        diag = self._kband[2 * b][None, :] - s[:, None] * self._mband[2 * b][None, :]
-        self._scatter_sub(diag, self._core_diagonal_correction(a))
+        diag = self._core_diagonal(s, a)
         if b <= 1:
-            e = (self._kband[2 * b + 1] - shift * self._mband[2 * b + 1])[:-1] if b == 1 else np.zeros(nc - 1)
+            e = self._core_subdiagonal(s)[0, :-1] if b == 1 else np.zeros(nc - 1)
             if nc == 1:
                 return negative + int(diag[0, 0] < 0)
             # Sturm count of the tridiagonal Schur complement: dstebz with a tolerance wider
