@@ -115,11 +115,10 @@ def simulate_regularised(prob: Problem, t_end: float, regularisation: float | No
     E = np.array([prob.basis(t) for t in sol.t]).T
     x, xd = prob.full_state(sol.y[:nf], sol.y[nf:2 * nf], E)
     res = SimulationResult(t=sol.t, x=x, v=xd, names=list(prob.names), events=[], t_end=float(t_end),
-                           energy=np.zeros(0), work=np.zeros(0), energy_error=float("nan"), n_steps=int(sol.t.size),
+                           energy=np.zeros(0), work=np.zeros(0), energy_error=float("nan"), n_steps=int(sol.nfev),
                            stopped_early=sol.status != 0, reason="" if sol.status == 0 else sol.message,
                            method=f"regularised ({method}, eps = {regularisation:g})",
                            elements=[f"{el.kind}:{el.name}" for el in prob.elements],
                            driven=[prob.names[j] for j in prob.c],
                            warnings=["regularised model: no exact stick, no events; energy balance not computed"])
-    res.n_steps = int(sol.nfev)
     return res

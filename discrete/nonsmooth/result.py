@@ -1,7 +1,10 @@
-"""Result of a nonsmooth simulation: time history, events, period, energy balance."""
+"""Results of nonsmooth simulations: time history, events, period, energy balance.
+
+:class:`TimeHistory` holds what every solver records; :class:`SimulationResult` (event-driven and
+regularised) and :class:`discrete.timestepping.SteppingResult` (Moreau-Jean) add their own statistics."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 
@@ -19,10 +22,11 @@ class Event:
 
 
 @dataclass
-class SimulationResult:
-    """Time history (``t``; ``x``, ``v`` with one row per DOF named in ``names``), events,
-    detected period, and energy balance ``energy`` (E(t)) vs ``work`` (integrated
-    non-conservative power plus impact losses) at the same instants."""
+class TimeHistory:
+    """Time history (``t``; ``x``, ``v`` with one row per DOF named in ``names``, drivers included),
+    events, detected period, and energy balance ``energy`` (E(t)) vs ``work`` (integrated
+    non-conservative power plus impact losses) at the same instants.  The fields after
+    ``energy_error`` are keyword-only; subclasses add theirs to :meth:`to_dict` by the two hooks."""
 
     t: np.ndarray
     x: np.ndarray
@@ -33,18 +37,14 @@ class SimulationResult:
     energy: np.ndarray
     work: np.ndarray
     energy_error: float
+    _: KW_ONLY
+    method: str
     period: float | None = None
-    period_info: dict = field(default_factory=dict)
-    n_pieces: int = 0
-    n_steps: int = 0
-    step_rejections: int = 0
     warnings: list[str] = field(default_factory=list)
     stopped_early: bool = False
     reason: str = ""
-    method: str = "event-driven"
     elements: list[str] = field(default_factory=list)
     driven: list[str] = field(default_factory=list)     # DOFs with prescribed motion (drivers)
-    work_parts: dict = field(default_factory=dict)      # total work by source (drivers, friction, impacts, ...)
 
     def events_of(self, kind: str | None = None, element: str | None = None) -> list[Event]:
         return [e for e in self.events if (kind is None or e.kind == kind) and (element is None or e.element == element)]
@@ -55,6 +55,14 @@ class SimulationResult:
     def series(self, name: str) -> tuple[np.ndarray, np.ndarray]:
         i = self.names.index(name)
         return self.x[i], self.v[i]
+
+    def _period_dict(self) -> dict:
+        """Keys following ``period`` in :meth:`to_dict`."""
+        return {}
+
+    def _solver_dict(self) -> dict:
+        """Keys following the energy balance in :meth:`to_dict` (work by source, solver statistics)."""
+        return {}
 
     def to_dict(self, events: bool = True) -> dict:
         counts: dict[str, int] = {}
@@ -68,14 +76,11 @@ class SimulationResult:
             "n_events": len(self.events),
             "event_counts": counts,
             "period": None if self.period is None else float(self.period),
-            "period_info": self.period_info,
-            "energy_error": float(self.energy_error),
+            **self._period_dict(),
+            "energy_error": float(self.energy_error) if np.isfinite(self.energy_error) else None,  # strict JSON
             "energy_final": float(self.energy[-1]) if self.energy.size else None,
             "work_final": float(self.work[-1]) if self.work.size else None,
-            "work_parts": {k: float(v) for k, v in self.work_parts.items()},
-            "n_pieces": self.n_pieces,
-            "n_steps": self.n_steps,
-            "step_rejections": self.step_rejections,
+            **self._solver_dict(),
             "warnings": list(self.warnings),
             "stopped_early": bool(self.stopped_early),
             "reason": self.reason,
@@ -83,3 +88,23 @@ class SimulationResult:
             "driven_dofs": list(self.driven),
             "elements": list(self.elements),
         }
+
+
+@dataclass
+class SimulationResult(TimeHistory):
+    """Result of the event-driven (or regularised) solver: :class:`TimeHistory` plus the period
+    detection details, the total work by source and the integration statistics."""
+
+    period_info: dict = field(default_factory=dict)
+    n_pieces: int = 0
+    n_steps: int = 0
+    step_rejections: int = 0
+    work_parts: dict = field(default_factory=dict)      # total work by source (drivers, friction, impacts, ...)
+    method: str = field(default="event-driven", kw_only=True)
+
+    def _period_dict(self) -> dict:
+        return {"period_info": self.period_info}
+
+    def _solver_dict(self) -> dict:
+        return {"work_parts": {k: float(v) for k, v in self.work_parts.items()}, "n_pieces": self.n_pieces,
+                "n_steps": self.n_steps, "step_rejections": self.step_rejections}

@@ -42,7 +42,7 @@ from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
 from ..nonsmooth.elements import Friction, Gap, Impact, OneSided
 from ..nonsmooth.problem import ExternalForce, MotionLaw
-from ..nonsmooth.result import Event
+from ..nonsmooth.result import Event, TimeHistory
 
 
 @dataclass
@@ -57,49 +57,19 @@ class StepOptions:
 
 
 @dataclass
-class SteppingResult:
-    """Time history (``x``, ``v``: one row per DOF, drivers included), events, energy balance."""
+class SteppingResult(TimeHistory):
+    """Result of the Moreau-Jean scheme: :class:`~discrete.nonsmooth.result.TimeHistory` plus the
+    projected Gauss-Seidel statistics and the element impulses."""
 
-    t: np.ndarray
-    x: np.ndarray
-    v: np.ndarray
-    names: list[str]
-    events: list[Event]
-    t_end: float
-    energy: np.ndarray
-    work: np.ndarray
-    energy_error: float
     n_steps: int
     pgs_iterations_max: int
     pgs_unconverged: int
-    warnings: list[str] = field(default_factory=list)
     impulses: np.ndarray | None = None     # (n_elements, n_samples): impulse / dt (mean force) of the step
-    method: str = "moreau-jean"
-    period: float | None = None
-    elements: list[str] = field(default_factory=list)
-    driven: list[str] = field(default_factory=list)
-    stopped_early: bool = False
-    reason: str = ""
+    method: str = field(default="moreau-jean", kw_only=True)
 
-    def series(self, name: str):
-        i = self.names.index(name)
-        return self.x[i], self.v[i]
-
-    def to_dict(self, events: bool = True) -> dict:
-        counts: dict[str, int] = {}
-        for e in self.events:
-            counts[e.kind] = counts.get(e.kind, 0) + 1
-        return {"method": self.method, "t_end": float(self.t_end),
-                "t_reached": float(self.t[-1]) if self.t.size else 0.0,
-                "events": [e.to_dict() for e in self.events] if events else [], "n_events": len(self.events),
-                "event_counts": counts, "period": None if self.period is None else float(self.period),
-                "energy_error": float(self.energy_error),
-                "energy_final": float(self.energy[-1]) if self.energy.size else None,
-                "work_final": float(self.work[-1]) if self.work.size else None,
-                "n_steps": self.n_steps, "pgs_iterations_max": self.pgs_iterations_max,
-                "pgs_unconverged": self.pgs_unconverged, "warnings": list(self.warnings),
-                "stopped_early": self.stopped_early, "reason": self.reason,
-                "dofs": list(self.names), "driven_dofs": list(self.driven), "elements": list(self.elements)}
+    def _solver_dict(self) -> dict:
+        return {"n_steps": self.n_steps, "pgs_iterations_max": self.pgs_iterations_max,
+                "pgs_unconverged": self.pgs_unconverged}
 
 
 def _motion(law: MotionLaw, t: float):
