@@ -6,8 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from fem.hybrid import (compile_hybrid, elastic_flexibility, is_hybrid, parse_hybrid, plot_result, run_model_file,
+from fem.hybrid import (compile_hybrid, is_hybrid, parse_hybrid, plot_result, run_model_file,
                         tributary_weights, write_csv)
+from fem.reduction import elastic_flexibility
 
 
 def bar_doc(n=10, modes=6, **extra):

@@ -8,7 +8,7 @@ Entry points: :func:`is_hybrid`, :func:`run_model_file` (parsed TOML dict -> :cl
 :func:`compile_hybrid` (the Problem for the solvers).
 """
 from .build import (Body, CompiledHybrid, DriverSpec, ElementSpec, ForceSpec, HybridModel, NodeRef, ReductionSpec,
-                    Spring, compile_hybrid, elastic_flexibility, reduce_hybrid)
+                    Spring, compile_hybrid)
 from .distributed import distributed_friction, tributary_weights
 from .io import plot_result, write_csv
 from .modelfile import is_hybrid, parse_hybrid
@@ -16,5 +16,4 @@ from .run import HybridResult, run, run_model_file
 
 __all__ = ["is_hybrid", "run_model_file", "write_csv", "plot_result", "HybridResult", "HybridModel", "run",
            "compile_hybrid", "parse_hybrid", "CompiledHybrid", "NodeRef", "Body", "Spring", "ElementSpec",
-           "ForceSpec", "DriverSpec", "ReductionSpec", "distributed_friction", "tributary_weights",
-           "elastic_flexibility", "reduce_hybrid"]
+           "ForceSpec", "DriverSpec", "ReductionSpec", "distributed_friction", "tributary_weights"]

@@ -13,7 +13,6 @@ matrix of the FE part is kept so that results carry the full FE field.
 """
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -150,108 +149,6 @@ def fe_dof(fe: FEModel, ref: NodeRef, where: str) -> int:
     return sys_.dof_index(field=fld, x=ref.x, where=where)
 
 
-def elastic_flexibility(K: sp.spmatrix, M: sp.spmatrix, R: np.ndarray | None, rows: np.ndarray) -> np.ndarray:
-    """Diagonal entries of the static flexibility at ``rows`` (indices of the given matrices).
-
-    For a floating structure (rigid modes R on these DOFs) the elastic flexibility with inertia
-    relief, sum over elastic modes of phi_j^2 / lambda, computed as P^T (K + M R R^T M)^-1 P with
-    P = I - M R R^T (R mass-normalised)."""
-    n = K.shape[0]
-    E = np.zeros((n, rows.size))
-    E[rows, np.arange(rows.size)] = 1.0
-    if R is None or R.shape[1] == 0:
-        lu = spla.splu(sp.csc_matrix(K))
-        return np.einsum("ij,ij->j", E, lu.solve(E))
-    Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-    Rn = R @ np.linalg.inv(np.linalg.cholesky(R.T @ Md @ R)).T
-    MR = Md @ Rn
-    Kd = (K.toarray() if sp.issparse(K) else np.asarray(K)) + MR @ MR.T
-    PE = E - MR @ (Rn.T @ E)
-    X = sla.solve(Kd, PE, assume_a="sym")
-    X = X - Rn @ (MR.T @ X)
-    return np.einsum("ij,ij->j", E, X)
-
-
-def _free_rigid(system: LinearSystem, tol: float = 1e-9) -> np.ndarray:
-    """Rigid motions of the free DOFs (null space of K_ff), as full-length columns over the free DOFs."""
-    if system.rigid_modes is None:
-        return np.zeros((system.n_free, 0))
-    R = system.rigid_modes[system.free]
-    if R.size == 0:
-        return np.zeros((system.n_free, 0))
-    Kf = system.free_block(system.K)
-    keep = [k for k in range(R.shape[1]) if np.linalg.norm(Kf @ R[:, k]) <= tol * max(1.0, abs(Kf).max()) * np.linalg.norm(R[:, k])]
-    return R[:, keep]
-
-
-def reduce_hybrid(system: LinearSystem, coupling: np.ndarray, spec: ReductionSpec) -> ReducedModel:
-    """:func:`fem.reduction.reduce` plus a restitution that is meaningful for floating structures
-    (rigid modes): elastic flexibility with inertia relief on both sides."""
-    n_free = system.n_free
-    if spec.static_correction:
-        n_int = n_free - np.unique(coupling).size
-        if spec.modes > n_int - 1:
-            raise ModelError("[reduction]", "modes", spec.modes,
-                             f"at most {n_int - 1} (interior DOFs left after the {np.unique(coupling).size} coupling DOFs)")
-    elif spec.modes + _free_rigid(system).shape[1] > n_free - 1:
-        raise ModelError("[reduction]", "modes", spec.modes, f"at most {n_free - 1} (free DOFs minus one)")
-    R = _free_rigid(system)
-    target = system
-    if R.shape[1]:
-        # floating structure: reduce() factorises K_ff.  A grounding spring at a coupling (boundary) DOF
-        # leaves the Craig-Bampton basis unchanged (K_II, K_IB do not see it); for free-interface modes it
-        # shifts the rigid modes to ~1e-6 of the first elastic frequency.  The reduced matrices are then
-        # re-projected from the true K below.
-        j = int(coupling[0]) if coupling.size else int(system.free[0])
-        eps = 1e-12 * float(abs(system.K).max())
-        Kg = system.K.tolil()
-        Kg[j, j] += eps
-        target = LinearSystem(M=system.M, K=Kg.tocsr(), C=system.C, H=system.H, dof_field=system.dof_field,
-                              dof_x=system.dof_x, dof_name=system.dof_name, constrained=system.constrained,
-                              title=system.title, physics=system.physics)
-    # free-interface modes of a floating structure: its rigid modes come first and are kept on top
-    n_req = spec.modes + (R.shape[1] if not spec.static_correction else 0)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", sla.LinAlgWarning)
-        red = reduce(target, coupling, n_req, static_correction=spec.static_correction,
-                     threshold=spec.threshold)
-    if R.shape[1]:
-        rs0 = red.system
-        Tm = sp.csr_matrix(red.T)
-        Kr = (Tm.T @ system.K @ Tm).toarray()
-        rs_new = LinearSystem(M=rs0.M, K=0.5 * (Kr + Kr.T), C=rs0.C, H=rs0.H, dof_field=rs0.dof_field,
-                              dof_x=rs0.dof_x, dof_name=rs0.dof_name, constrained=rs0.constrained,
-                              title=rs0.title, physics=rs0.physics)
-        red.system = rs_new
-    if R.shape[1] and coupling.size:
-        f = system.free
-        pos = {int(d): k for k, d in enumerate(f)}
-        rows = np.array([pos[int(j)] for j in red.coupling], dtype=int)
-        full = elastic_flexibility(system.free_block(system.K), system.free_block(system.M), R, rows)
-        rs = red.system
-        Tf = red.T[np.ix_(f, rs.free)]
-        Rr = np.linalg.lstsq(Tf, R, rcond=None)[0]
-        G = red.T[np.ix_(red.coupling, rs.free)]
-        Kr, Mr = rs.free_block(rs.K).toarray(), rs.free_block(rs.M).toarray()
-        # reduced elastic flexibility at the coupling DOFs: g^T F_r g with g the coupling rows
-        MRr = Mr @ Rr @ np.linalg.inv(np.linalg.cholesky(Rr.T @ Mr @ Rr)).T
-        Rn = Rr @ np.linalg.inv(np.linalg.cholesky(Rr.T @ Mr @ Rr)).T
-        Kd = Kr + MRr @ MRr.T
-        PG = G.T - MRr @ (Rn.T @ G.T)
-        X = sla.solve(Kd, PG, assume_a="sym")
-        X = X - Rn @ (MRr.T @ X)
-        red_flex = np.einsum("ij,ji->i", G, X)
-        red.restitution = red_flex / full
-        red.warnings = [w for w in red.warnings if "static flexibility" not in w]
-        for j, r in zip(red.coupling, red.restitution):
-            if r < spec.threshold:
-                red.warnings.append(
-                    f"the reduced basis restores only {100 * r:.1f} % of the (elastic, inertia-relief) static "
-                    f"flexibility at {system.label(int(j))} (threshold {100 * spec.threshold:.0f} %): add modes "
-                    "or use static_correction = true")
-    return red
-
-
 # -------------------------------------------------------------------- compile
 def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     """Build the :class:`Problem` (full or reduced FE part plus lumped bodies)."""
@@ -316,7 +213,9 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     reduced = None
     report = None
     if model.reduction is not None:
-        reduced = reduce_hybrid(system, coupling, model.reduction)
+        spec = model.reduction
+        reduced = reduce(system, coupling, spec.modes, static_correction=spec.static_correction,
+                         threshold=spec.threshold)
         if model.reduction.static_correction:
             kept = set(reduced.coupling.tolist())
             lost = [int(j) for j in coupling if int(j) not in kept]
