@@ -128,8 +128,13 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
         lam, vec = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1])
         method, sigma = "dense eigh(K, M)", 0.0
     elif seeds is not None and not n_rigid:
-        lam, vec, sigma, method, notes = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max, rigid_level)
+        if shift is not None:
+            notes.append(f"shift = {shift!r} not used: the seeded solver places its own shifts at the seeds")
+        lam, vec, sigma, method, more = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max, rigid_level)
+        notes += more
     else:
+        if seeds is not None:
+            notes.append("seeds not used: the system has rigid-body modes (shift-invert Lanczos instead)")
         lam, vec, sigma = _shift_invert(K, M, n_modes, shift, lam_max, rigid_level, n_rigid)
         method = "sparse shift-invert Lanczos (eigsh)"
     order = np.argsort(lam)
@@ -178,11 +183,14 @@ def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
     shift below the seeds that a Sylvester count shows to lie below the lowest eigenvalue."""
     try:
         sol = seeded_eigenpairs(K, M, seeds, k, start=seed_vectors)
+    except ModelError:
+        raise                                      # bad seeds given by the caller: say so
+    except (SolverError, ValueError, np.linalg.LinAlgError) as exc:      # not certified, or a numerical failure
+        note = f"seeded solver not used ({exc}); shift-invert Lanczos below the seeds instead"
+    else:
         notes = [] if sol.contamination.max() < 1e-6 else [
             f"seeded solver: vectors contaminated up to {sol.contamination.max():.1e} by neighbouring modes"]
         return sol.eigenvalues, sol.vectors, float(np.min(seeds)), sol.describe(), notes
-    except SolverError as exc:
-        note = f"seeded solver not used ({exc}); shift-invert Lanczos below the seeds instead"
     sigma = 0.99 * float(np.min(seeds))
     try:
         counter = ShiftedSolver(K, M)

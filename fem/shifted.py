@@ -42,6 +42,7 @@ class ShiftedSolver:
     def __init__(self, K: sp.spmatrix, M: sp.spmatrix):
         K, M = sp.csr_matrix(K), sp.csr_matrix(M)
         if not K.has_canonical_format:
+            K = K.copy()                      # the caller's matrix stays as it is
             K.sum_duplicates()
         n = K.shape[0]
         Kc = K.tocoo()
@@ -90,9 +91,12 @@ class ShiftedSolver:
         self.leaf_core = np.where(target >= 0, rank[np.maximum(target, 0)], 0) if core.size else np.zeros(0, int)
         self.leaf_k = k_diag[self.leaf_idx]
         self.leaf_m = m_diag[self.leaf_idx]
-        # a leaf row holds its diagonal and at most one coupling: the coupling is the rest of the row sum
-        row_sum = np.bincount(Kc.row, weights=Kc.data, minlength=n)
-        self.leaf_c = row_sum[self.leaf_idx] - self.leaf_k
+        # a leaf row holds its diagonal and at most one coupling, read directly (K summed: one entry)
+        self.leaf_c = np.zeros(self.leaf_idx.size)
+        leaf_no = np.full(n, -1)
+        leaf_no[self.leaf_idx] = np.arange(self.leaf_idx.size)
+        hit = k_off & (leaf_no[Kc.row] >= 0) & (first[Kc.row] == Kc.col)
+        self.leaf_c[leaf_no[Kc.row[hit]]] = Kc.data[hit]
         self._unique = self.leaf_core.size == 0 or bool(np.bincount(self.leaf_core).max() <= 1)
         # index arrays that are contiguous ranges become slices: views instead of copies
         self._core, self._leaf, self._target = (_as_index(a) for a in (self.core_idx, self.leaf_idx, self.leaf_core))
@@ -121,7 +125,7 @@ class ShiftedSolver:
         """Core block in LAPACK general band storage with room for the LU fill:
         A[i, j] at [2b + i - j, j] (i, j band-order positions); duplicates summed."""
         i, j = rank[A.row], rank[A.col]
-        keep = (i >= 0) & (j >= 0)
+        keep = (i >= 0) & (j >= 0) & (A.data != 0)      # stored zeros may lie outside the band
         nc = int(np.count_nonzero(rank >= 0))
         flat = (2 * b + i[keep] - j[keep]) * nc + j[keep]
         return np.bincount(flat, weights=A.data[keep], minlength=(3 * b + 1) * nc).reshape(3 * b + 1, nc)
@@ -162,17 +166,20 @@ class ShiftedSolver:
         if nc == 0:
             return ShiftedFactors(self, s, a, None)
         diag = self._core_diagonal(s, a)
-        if b <= 1:
+        if b <= 1 and q * nc >= 3:                  # (LAPACK's tridiagonal wrappers want n >= 3)
             off = self._core_subdiagonal(s) if b == 1 else np.zeros((q, nc))
             off[:, -1] = 0.0                          # no coupling between stacked blocks
             e = off.ravel()[:-1]
             dl, dd, du, du2, ipiv, info = lapack.dgttrf(e, diag.ravel(), e.copy())
             lu = ("gt", dl, dd, du, du2, ipiv)
         else:
-            bands = self._kband[:, None, :] - s[None, :, None] * self._mband[:, None, :]
-            bands[2 * b] = diag
-            lu_, ipiv, info = lapack.dgbtrf(bands.reshape(3 * b + 1, q * nc), b, b)
-            lu = ("gb", lu_, ipiv)
+            be = max(b, 1)
+            bands = np.zeros((3 * be + 1, q, nc))
+            for d in range(-b, b + 1):                # band row of offset i - j: 2 b + d here, 2 be + d there
+                bands[2 * be + d] = self._kband[2 * b + d][None, :] - s[:, None] * self._mband[2 * b + d][None, :]
+            bands[2 * be] = diag
+            lu_, ipiv, info = lapack.dgbtrf(bands.reshape(3 * be + 1, q * nc), be, be)
+            lu = ("gb", lu_, ipiv, be)
         if info > 0:
             raise SolverError(f"K - s M is exactly singular at a shift in {s.tolist()}: move the shift")
         return ShiftedFactors(self, s, a, lu)
@@ -191,7 +198,8 @@ class ShiftedSolver:
             if nc == 1:
                 return negative + int(diag[0, 0] < 0)
             # Sturm count of the tridiagonal Schur complement: dstebz with a tolerance wider
-            # than the spectrum counts at the interval ends and bisects nothing
+            # than the spectrum counts at the interval ends and bisects nothing (it counts
+            # (-inf, 0]: callers take the count between eigenvalues, never on one)
             m = lapack.dstebz(diag[0], e, 1, -np.inf, 0.0, 0, 0, np.inf, "B")[0]
             return negative + int(m)
         core = self.core_idx
@@ -238,8 +246,8 @@ class ShiftedFactors:
                 _, dl, dd, du, du2, ipiv = self.lu
                 xc, info = lapack.dgttrs(dl, dd, du, du2, ipiv, rhs)
             else:
-                _, lu, ipiv = self.lu
-                xc, info = lapack.dgbtrs(lu, sv.bandwidth, sv.bandwidth, rhs, ipiv)
+                _, lu, ipiv, be = self.lu
+                xc, info = lapack.dgbtrs(lu, be, be, rhs, ipiv)
             xc = xc.T if single else xc.reshape(q, nc)
         else:
             xc = np.zeros((q, 0))

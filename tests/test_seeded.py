@@ -205,3 +205,74 @@ def test_rigid_mechanisms_seeded():
     assert res.method.startswith("seeded")
     exact = regular_of(model).natural_frequencies()[:8]
     assert np.max(np.abs(res.omega_rad_s / exact - 1)) < 1e-12
+
+
+# ---- regressions from the review of the seeded solver
+def _chain(n, rng, ground=0.5):
+    K = np.zeros((n, n))
+    for i in range(n - 1):
+        k = rng.uniform(1, 2)
+        K[i, i] += k; K[i + 1, i + 1] += k; K[i, i + 1] -= k; K[i + 1, i] -= k
+    K[0, 0] += ground
+    return K, np.diag(rng.uniform(0.5, 1.5, n))
+
+
+def _system(K, M):
+    from discrete.linear_system import LinearSystem
+    return LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), dof_field=np.array(["x"] * K.shape[0]))
+
+
+def test_two_seeds_on_one_mode_are_refused_not_returned():
+    """Seeds [l1, l1, l3, l4] for the lowest 3: a duplicated mode plus a missed one passes a
+    Sylvester count, so independence is checked first; modal_analysis falls back to Lanczos."""
+    rng = np.random.default_rng(5)
+    K, M = _chain(40, rng)
+    lam = sla.eigh(K, M, eigvals_only=True)
+    seeds = [lam[0] * (1 + 1e-4), lam[0] * (1 + 2e-4), lam[2] * (1 + 1e-4), lam[3] * (1 + 1e-4)]
+    with pytest.raises(SolverError):
+        seeded_eigenpairs(sp.csr_matrix(K), sp.csr_matrix(M), seeds, 3)
+    res = modal_analysis(_system(K, M), 3, seeds=seeds)
+    assert np.allclose(res.eigenvalues, lam[:3], rtol=1e-10) and any("seeded solver not used" in w for w in res.warnings)
+
+
+def test_star_with_a_one_dof_core():
+    """A hub with 20 absorbers: the condensed core is one DOF (stacked size 2 for one mode)."""
+    rng = np.random.default_rng(4)
+    n = 21
+    K, M = np.zeros((n, n)), np.diag(rng.uniform(0.5, 1.5, n))
+    for leaf in range(1, n):
+        k = rng.uniform(1, 2)
+        K[leaf, leaf] += k + 0.05; K[0, 0] += k; K[0, leaf] -= k; K[leaf, 0] -= k
+    lam = sla.eigh(K, M, eigvals_only=True)
+    for k in (1, 2):
+        res = modal_analysis(_system(K, M), k, seeds=lam[:k + 1] * 1.001)
+        assert res.method.startswith("seeded") and np.allclose(res.eigenvalues, lam[:k], rtol=1e-10)
+
+
+def test_stored_zeros_outside_the_band():
+    """A zero-stiffness spring stored between distant DOFs must not widen (or break) the band."""
+    rng = np.random.default_rng(4)
+    K, M = _chain(30, rng)
+    C = sp.coo_matrix(K)
+    Kz = sp.coo_matrix((np.r_[C.data, 0.0, 0.0], (np.r_[C.row, 3, 20], np.r_[C.col, 20, 3])), shape=K.shape).tocsr()
+    lam = sla.eigh(K, M, eigvals_only=True)
+    assert ShiftedSolver(Kz, sp.csr_matrix(M)).bandwidth == 1
+    res = modal_analysis(_system(Kz, M), 3, seeds=lam[:4] * 1.001)
+    assert res.method.startswith("seeded") and np.allclose(res.eigenvalues, lam[:3], rtol=1e-10)
+
+
+def test_tolerance_below_the_measurable_change_converges():
+    rng = np.random.default_rng(5)
+    K, M = _chain(200, rng)
+    lam = sla.eigh(K, M, eigvals_only=True)
+    sol = seeded_eigenpairs(sp.csr_matrix(K), sp.csr_matrix(M), lam[:7] * (1 + 1e-3), 6, tol=1e-13)
+    assert np.allclose(sol.eigenvalues, lam[:6], rtol=1e-12)
+
+
+def test_zero_start_row_is_bad_input():
+    K, M = CASES["lumped drive"]()
+    lam = dense_eigenvalues(K, M)
+    start = np.ones((7, K.shape[0]))
+    start[2] = 0.0
+    with pytest.raises(ModelError, match="start"):
+        seeded_eigenpairs(K, M, lam[:7], 6, start=start)

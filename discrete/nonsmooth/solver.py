@@ -433,8 +433,10 @@ class EventDrivenSolver:
                 acc["Wp"][k_] = Wp0.get(k_, 0.0) + w_
             acc["W"] = W0 + float(np.sum(y[2 * nf:]))
         # absolute tolerances in the units of q and v: the state, or -- for a piece starting at
-        # rest -- the drivers' displacement and velocity amplitudes (a state at rest once gave
-        # atol ~ 1e-310, an overflowing error norm and a failed piece: seed 002 from rest)
+        # rest -- the drivers' displacement and velocity amplitudes and friction surface speeds
+        # (a state at rest once gave atol ~ 1e-310, an overflowing error norm and a failed piece:
+        # seed 002 from rest); with neither (force-driven from rest) 1 in the model's units, and
+        # v_scale never below 1: atol >= rtol 1e-2 in SI units, loose only for responses < 1e-8
         drive_q = max((float(np.max(np.abs(ge[2:]))) for ge in p.ge if ge.size > 2), default=0.0)
         drive_v = max((float(np.max(np.abs(gv))) for gv in p.gve if gv.size), default=0.0)
         q_scale = max(float(np.max(np.abs(z[:nf]))) if nf else 0.0, drive_q) or 1.0
