@@ -16,7 +16,7 @@ from ..errors import ModelError
 from ..lumped import GROUND, LumpedModel
 from ..schema import check_keys, choice, number, require
 from .problem import ExternalForce, MotionLaw, Problem
-from .tables import element_tables
+from .tables import element_tables, simulation_table
 
 LUMPED_KEYS = {"title", "body", "driver", "spring", "damper", "gear"}
 TOP_LEVEL_KEYS = {"friction", "one_sided", "gap", "impact", "force", "simulation", "constants"}
@@ -99,23 +99,11 @@ def build_problem(doc: dict):
         raise ModelError("model file", "constants", consts, "a table [constants]")
     check_keys(consts, {"g"}, "[constants]")
     grav = number(consts.get("g", 9.81), "g", "[constants]", positive=True)
-    sim = doc.get("simulation")
-    if not isinstance(sim, dict):
-        raise ModelError("model file", "simulation", sim, "a table [simulation] with t_end = .. (required)")
-    check_keys(sim, SIM_KEYS, "[simulation]")
-    t_end = number(require(sim, "t_end", "[simulation]", "the end time in s"), "t_end", "[simulation]", positive=True)
-    settings = {"t_end": t_end, "method": choice(sim.get("method", "event"), "method", "[simulation]", REG_METHODS)}
-    for k, kw in (("max_events", dict(positive=True, integer=True)), ("max_step", dict(positive=True)),
-                  ("steps_per_period", dict(positive=True, integer=True)), ("rtol", dict(positive=True)),
-                  ("rest_tol", dict(positive=True)), ("regularisation", dict(positive=True)),
-                  ("penalty", dict(positive=True)), ("memory_time", dict(positive=True)),
-                  ("output_step", dict(positive=True))):
-        if k in sim:
-            settings[k] = number(sim[k], k, "[simulation]", **kw)
-    if "energy" in sim:
-        if not isinstance(sim["energy"], bool):
-            raise ModelError("[simulation]", "energy", sim["energy"], "true | false")
-        settings["energy"] = sim["energy"]
+    pos, count = dict(positive=True), dict(positive=True, integer=True)
+    settings = simulation_table(doc, SIM_KEYS, REG_METHODS, {
+        "max_events": count, "max_step": pos, "steps_per_period": count, "rtol": pos, "rest_tol": pos,
+        "regularisation": pos, "penalty": pos, "memory_time": pos, "output_step": pos})
+    t_end = settings["t_end"]
 
     names_all = lm.names
     indep, T = lm.transformation()

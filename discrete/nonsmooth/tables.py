@@ -21,6 +21,26 @@ KEYS = {"friction": {"name", "kinetic", "static", "viscous", "quadratic", "cubic
 SIDES = {"tension": 1, "compression": -1}
 
 
+def simulation_table(doc: dict, keys: set, methods: tuple, numeric: dict) -> dict:
+    """The required ``[simulation]`` table: t_end, method (first of ``methods`` by default), the
+    optional ``numeric`` settings (name -> keyword arguments of :func:`number`) and energy."""
+    sim = doc.get("simulation")
+    if not isinstance(sim, dict):
+        raise ModelError("model file", "simulation", sim, "a table [simulation] with t_end = .. (required)")
+    check_keys(sim, keys, "[simulation]")
+    settings = {"t_end": number(require(sim, "t_end", "[simulation]", "the end time in s"), "t_end", "[simulation]",
+                                positive=True),
+                "method": choice(sim.get("method", methods[0]), "method", "[simulation]", methods)}
+    for k, kw in numeric.items():
+        if k in sim:
+            settings[k] = number(sim[k], k, "[simulation]", **kw)
+    if "energy" in sim:
+        if not isinstance(sim["energy"], bool):
+            raise ModelError("[simulation]", "energy", sim["energy"], "true | false")
+        settings["energy"] = sim["energy"]
+    return settings
+
+
 def unique_name(t: dict, where: str, default: str, used: set) -> str:
     """The element name (``default`` if not given), a non-empty string not in ``used``; adds it to ``used``."""
     name = t.get("name", default)

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from discrete.errors import ModelError
 from discrete.nonsmooth import MotionLaw
-from discrete.nonsmooth.tables import element_tables, unique_name
+from discrete.nonsmooth.tables import element_tables, simulation_table, unique_name
 from discrete.schema import check_keys, choice, number, require
 
 from ..assembly import assemble
@@ -196,23 +196,10 @@ def parse_hybrid(doc: dict) -> tuple[HybridModel, dict]:
     model.initial_velocity = number(ini.get("velocity", 0.0), "velocity", "[initial]")
     state = choice(ini.get("state", "rest"), "state", "[initial]", ("rest", "linear_steady_state"))
     model.initial_harmonic = state == "linear_steady_state"
-    sim = doc.get("simulation")
-    if not isinstance(sim, dict):
-        raise ModelError("model file", "simulation", sim, "a table [simulation] with t_end = .. (required)")
-    check_keys(sim, SIM_KEYS, "[simulation]")
-    st = {"t_end": number(require(sim, "t_end", "[simulation]", "the end time in s"), "t_end", "[simulation]",
-                          positive=True),
-          "method": choice(sim.get("method", "event"), "method", "[simulation]", METHODS)}
-    for k, kw in (("dt", dict(positive=True)), ("theta", {}), ("max_events", dict(positive=True, integer=True)),
-                  ("max_step", dict(positive=True)), ("steps_per_period", dict(positive=True, integer=True)),
-                  ("rest_tol", dict(positive=True)), ("samples", dict(positive=True, integer=True)),
-                  ("tol", dict(positive=True)), ("max_iter", dict(positive=True, integer=True))):
-        if k in sim:
-            st[k] = number(sim[k], k, "[simulation]", **kw)
-    if "energy" in sim:
-        if not isinstance(sim["energy"], bool):
-            raise ModelError("[simulation]", "energy", sim["energy"], "true | false")
-        st["energy"] = sim["energy"]
+    pos, count = dict(positive=True), dict(positive=True, integer=True)
+    st = simulation_table(doc, SIM_KEYS, METHODS, {
+        "dt": pos, "theta": {}, "max_events": count, "max_step": pos, "steps_per_period": count, "rest_tol": pos,
+        "samples": count, "tol": pos, "max_iter": count})
     if st["method"] == "moreau" and "dt" not in st:
         raise ModelError("[simulation]", "dt", None, "a time step dt = .. for method = \"moreau\"")
     if st["method"] == "event":

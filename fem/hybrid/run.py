@@ -159,7 +159,7 @@ def run(model: HybridModel, settings: dict) -> HybridResult:
         kw = {k: settings[k] for k in ("max_events", "max_step", "steps_per_period", "rest_tol", "energy") if k in settings}
         res = simulate(comp.problem, settings["t_end"], Options(**kw))
     warn += [w for w in res.warnings if w not in warn]
-    if getattr(res, "stopped_early", False):
+    if res.stopped_early:
         warn.append(f"stopped early: {res.reason}")
     idx = _samples(res.t, settings.get("samples", 2000))
     fld = comp.field(res.x[:, idx])
