@@ -40,7 +40,7 @@ from discrete.linear_system import LinearSystem
 
 from .blas import single_threaded_blas
 from .seeded import seeded_eigenpairs
-from .shifted import ShiftedSolver
+from .shifted import ShiftedSolver, is_diagonal
 
 EPS = np.finfo(float).eps
 
@@ -112,7 +112,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
         raise ModelError("[analysis]", "modes", n_modes, f"an integer from 1 to {n} (the number of free DOFs)")
     K = system.free_block(system.K)
     M = system.free_block(system.M)
-    n_massive = int(np.count_nonzero(M.diagonal() > 0)) if _is_diagonal(M) else n
+    n_massive = int(np.count_nonzero(M.diagonal() > 0)) if is_diagonal(M) else n
     if n_modes > n_massive:
         raise ModelError("[analysis]", "modes", n_modes,
                          f"at most {n_massive}: the lumped mass matrix has {n_massive} DOFs with inertia")
@@ -210,11 +210,6 @@ def _norm1(A: sp.spmatrix) -> float:
     """Largest column sum of |A| (the 1-norm)."""
     A = sp.csr_matrix(A)
     return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
-
-
-def _is_diagonal(A: sp.spmatrix) -> bool:
-    A = sp.csr_matrix(A)
-    return bool(np.array_equal(A.indices, np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))))
 
 
 def _is_positive_definite(M: sp.spmatrix) -> bool:

@@ -30,7 +30,7 @@ import scipy.sparse as sp
 from discrete.errors import ModelError, SolverError
 
 from .blas import single_threaded_blas
-from .shifted import ShiftedSolver
+from .shifted import ShiftedSolver, is_diagonal
 
 # The change of a vector is measured as sqrt(y'My / mu^2 - 1), which rounding resolves to ~1e-7
 # (the square root of a few eps): smaller tolerances are taken as this floor.
@@ -185,9 +185,8 @@ def _eigenvalues(K: sp.csr_matrix, solver: ShiftedSolver, mass, V: np.ndarray) -
 
 def _mass_product(M: sp.csr_matrix):
     """rows -> rows M (a diagonal M as a broadcast product)."""
-    n = M.shape[0]
-    if M.nnz == n and np.array_equal(M.indices, np.arange(n)) and np.array_equal(M.indptr, np.arange(n + 1)):
-        m = M.data.copy()
+    if is_diagonal(M):
+        m = M.diagonal()
         return lambda V: V * m[None, :]
     return lambda V: (M @ V.T).T
 

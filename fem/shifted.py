@@ -33,6 +33,12 @@ from discrete.errors import SolverError
 EPS = np.finfo(float).eps
 
 
+def is_diagonal(A: sp.spmatrix) -> bool:
+    """Whether A stores entries on its diagonal only."""
+    A = sp.csr_matrix(A)
+    return bool(np.array_equal(A.indices, np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))))
+
+
 class ShiftedSolver:
     """Solves ``(K - s_j M) x_j = b_j`` for a set of shifts ``s_j`` (see the module notes).
 
@@ -48,7 +54,7 @@ class ShiftedSolver:
         Kc = K.tocoo()
         k_diag = K.diagonal()
         m_diag = M.diagonal()
-        diagonal_mass = M.nnz <= n and np.array_equal(M.indices, np.flatnonzero(np.diff(M.indptr)))
+        diagonal_mass = is_diagonal(M)
         # off-diagonal pattern of K and M, each coupling once (K canonical: unique entries)
         k_off = (Kc.row != Kc.col) & (Kc.data != 0)
         rows, cols = Kc.row[k_off], Kc.col[k_off]
