@@ -7,7 +7,7 @@ in the same run:
 * the package's sparse FE path (``fem.drives.analysis.fe_modes``, target >= 100x faster than
   dense at n = 1000): the certified seeded solver -- pseudo-medium estimates, multi-shift
   inverse iteration on the FE matrices with the mechanism DOFs condensed, Sylvester count;
-* plain shift-invert Lanczos (``fem.modal.modal_analysis`` without seeds), the path the
+* plain shift-invert Lanczos (``discrete.linear.modal.modal_analysis`` without seeds), the path the
   seeded solver replaces for crowded spectra (~400 Lanczos iterations here);
 * transfer-matrix root finding (Wittrick-Williams count bisection).
 
@@ -37,7 +37,7 @@ from fem.drives import DriveModel, LumpedShaft, Mechanism  # noqa: E402
 from fem.drives.analysis import continuum_roots, fe_modes, regular_of  # noqa: E402
 from fem.drives.discrete import build_discrete  # noqa: E402
 from fem.drives.tm import build_chain  # noqa: E402
-from fem.modal import modal_analysis  # noqa: E402
+from discrete.linear.modal import modal_analysis  # noqa: E402
 
 
 def median_time(fn, repeat: int):

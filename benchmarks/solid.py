@@ -1,7 +1,7 @@
 """3D solid shaft: lowest 10 modes of a cantilever with >= 100 000 DOFs (27-node hexahedra).
 
 Compares, each in its own subprocess (so the peak memory is that method's own):
-  * the package's sparse shift-invert Lanczos (fem.modal.modal_analysis: sparse LU of K,
+  * the package's sparse shift-invert Lanczos (discrete.linear.modal.modal_analysis: sparse LU of K,
     ARPACK), and
   * LOBPCG preconditioned by smoothed-aggregation AMG (pyamg, with the six rigid-body
     modes as near-null space; block of modes + 4 vectors; the preconditioner applies one
@@ -38,7 +38,7 @@ def _shift_invert(axial, n_quarter, k, q):
     t0 = time.perf_counter()
     solid = _build(axial, n_quarter)
     tb = time.perf_counter() - t0
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     t0 = time.perf_counter()
     res = modal_analysis(solid.system, k)

@@ -35,7 +35,7 @@ def _json_default(o):
 
 # ---------------------------------------------------------------- modal
 def modal_report(mf, n_modes: int | None = None, shift: float | None = None):
-    from .modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     an = mf.analysis
     if an.get("type", "modal") != "modal" and n_modes is None:
@@ -163,7 +163,7 @@ def cmd_modal(args) -> int:
 
 # --------------------------------------------------------------- forced
 def forced_run(mf):
-    from .harmonic import harmonic_response
+    from discrete.linear.harmonic import harmonic_response
     from .modelfile import parse_damping, parse_forced
 
     sys_ = mf.linear_system()

@@ -164,7 +164,7 @@ class ForcedSpec:
 
 
 def parse_damping(doc: dict):
-    from .harmonic import Damping
+    from discrete.linear.harmonic import Damping
 
     t = doc.get("damping", {})
     check_keys(t, {"type", "alpha", "beta", "zeta", "psi"}, "[damping]")

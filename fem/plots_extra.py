@@ -3,7 +3,7 @@ Campbell-style frequency-vs-parameter, amplitude-frequency curves, phase portrai
 time histories.  Nothing here computes a result; each function takes one and draws it.
 
 Result objects are used through their documented attributes: a :class:`ModalResult`
-(``frequencies_hz``), a :class:`fem.harmonic.HarmonicResult` (``frequencies_hz``,
+(``frequencies_hz``), a :class:`discrete.linear.harmonic.HarmonicResult` (``frequencies_hz``,
 ``amplitude``, ``outputs``), a nonsmooth ``SimulationResult`` (``t``, ``x``, ``v``,
 ``names``, ``events``, ``period``); plain arrays work where a function says so.
 """

@@ -9,9 +9,9 @@ import pytest
 from discrete.errors import ModelError
 from discrete.lumped import LumpedModel
 from fem import assemble, modal_analysis
-from fem.harmonic import harmonic_response
+from discrete.linear.harmonic import harmonic_response
 from fem.modelfile import parse_forced, parse_model
-from fem.static import static_deflection
+from discrete.linear.static import static_deflection
 
 BASE = {
     "material": {"E": 2.1e11, "G": 8.1e10, "rho": 7850.0},

@@ -189,7 +189,7 @@ def test_tm_mode_shapes_equal_fe_shapes(boundary):
     from discrete.transfer import mode_shape
     from fem.drives import DriveModel, LumpedShaft, Mechanism
     from fem.drives.discrete import build_discrete
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     reg = RegularDrive(boundary=boundary, **SET_R)
     ch = reg.chain()

@@ -8,7 +8,7 @@ import pytest
 
 from fem.hybrid import (compile_hybrid, is_hybrid, parse_hybrid, plot_result, run_model_file,
                         tributary_weights, write_csv)
-from fem.reduction import elastic_flexibility
+from discrete.linear.reduction import elastic_flexibility
 
 
 def bar_doc(n=10, modes=6, **extra):

@@ -1,5 +1,5 @@
 """Reduction of floating structures (rigid-body modes, K_ff singular): inertia relief in
-:func:`fem.reduction.reduce`.
+:func:`discrete.linear.reduction.reduce`.
 
 References (unit stiffness and inertia per length, L = 1):
 
@@ -20,7 +20,7 @@ import pytest
 from discrete.errors import ModelError, SolverError
 from discrete.linear_system import LinearSystem
 from fem import assemble, modal_analysis
-from fem.reduction import elastic_flexibility, reduce
+from discrete.linear.reduction import elastic_flexibility, reduce
 from validation.analytic.bending import euler_bernoulli_roots
 from validation.builders import uniform, unit_section
 

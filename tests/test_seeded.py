@@ -1,5 +1,5 @@
-"""Multi-shift factorisations with leaf condensation (fem.shifted), the certified seeded
-eigen-solver (fem.seeded) and its use for large drives (fem.drives.analysis.fe_modes).
+"""Multi-shift factorisations with leaf condensation (discrete.linalg.shifted), the certified seeded
+eigen-solver (discrete.linalg.seeded) and its use for large drives (fem.drives.analysis.fe_modes).
 
 References: scipy's sparse direct solve, dense symmetric eigenvalue counts and eigh, the
 regular-structure closed form (10.36)/(10.16) and the transfer-matrix roots."""
@@ -17,9 +17,9 @@ from fem.drives import DistributedShaft, DriveModel, LumpedShaft, Mechanism
 from fem.drives.analysis import fe_modes, regular_of
 from fem.drives.discrete import build_discrete
 from fem.drives.tm import build_chain
-from fem.modal import modal_analysis
-from fem.seeded import seeded_eigenpairs
-from fem.shifted import ShiftedSolver
+from discrete.linear.modal import modal_analysis
+from discrete.linalg.seeded import seeded_eigenpairs
+from discrete.linalg.shifted import ShiftedSolver
 
 
 def set_c(n: int, boundary: str = "clamped-free", c: float | None = None) -> DriveModel:

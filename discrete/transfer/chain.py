@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelError, SolverError
-from .elements import MEMBERS, Branch, Ground, Inertia, Load, Ratio
+from .elements import Branch, Ground, Inertia, Load, Member, Ratio
 
 BOUNDARIES = ("clamped", "free")
 EPS = np.finfo(float).eps
@@ -52,14 +52,14 @@ class Chain:
                 raise ModelError("chain", key, getattr(self, key), "'clamped' | 'free'")
         if not self.elements:
             raise ModelError("chain", "elements", [], "at least one element")
-        if self.start == "clamped" and self.end == "clamped" and not any(isinstance(e, MEMBERS) for e in self.elements):
+        if self.start == "clamped" and self.end == "clamped" and not any(isinstance(e, Member) for e in self.elements):
             raise ModelError("chain", "elements", "no member", "an elastic member between two clamped ends")
-        known = MEMBERS + (Inertia, Ground, Load, Branch, Ratio)
+        known = (Member, Inertia, Ground, Load, Branch, Ratio)
         for i, e in enumerate(self.elements):
             if not isinstance(e, known):
                 raise ModelError("chain", f"elements[{i}]", type(e).__name__,
                                  "Spring, Damper, Shaft, Parallel, Inertia, Ground, Load, Branch or Ratio")
-        if self.end == "clamped" and not isinstance(self.elements[-1], MEMBERS):
+        if self.end == "clamped" and not isinstance(self.elements[-1], Member):
             raise ModelError("chain", "elements[-1]", type(self.elements[-1]).__name__,
                              "an elastic member (Spring/Shaft/Damper) next to a clamped end")
 
@@ -71,7 +71,7 @@ class Chain:
 # ----------------------------------------------------------- element matrices
 def element_matrix(e, p: float) -> np.ndarray:
     """2x2 transfer matrix of one element at frequency p (a branch as its shunt J*(p) (10.15))."""
-    if isinstance(e, MEMBERS):
+    if isinstance(e, Member):
         A, B, C, D = (np.asarray(v).item() for v in e.T(np.array([p])))
         return np.array([[A, B], [C, D]])
     if isinstance(e, Ratio):
@@ -113,7 +113,7 @@ def _stiffness_sweep(elements, p, k, *, reverse: bool, cache):
     memo = cache.setdefault(("members", p.ctypes.data, p.size), {})   # repeated (identical) elements
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for e in seq:
-            if isinstance(e, MEMBERS):
+            if isinstance(e, Member):
                 key = id(e)
                 if key not in memo:
                     if not e.real:
@@ -158,7 +158,7 @@ def _count_scalar(chain: Chain, p: float) -> int:
     for e in chain.elements:
         key = id(e)
         if key not in vals:
-            if isinstance(e, MEMBERS):
+            if isinstance(e, Member):
                 if not e.real:
                     raise ModelError("chain", "element", type(e).__name__, "undamped elements for natural frequencies")
                 s11, s12, s22 = (float(v[0]) for v in e.stiffness(pa))
@@ -248,7 +248,7 @@ def _branch_line(br: Branch, p, store=None):
 
 def _apply(e, line, p, forward, store=None):
     al, be, ga = line
-    if isinstance(e, MEMBERS):
+    if isinstance(e, Member):
         return _member_line(al, be, ga, e.T(p), forward)
     if isinstance(e, Ratio):
         r = e.ratio
@@ -433,7 +433,7 @@ def _back_substitute(chain, w, lines, store, a_end, Q_end) -> ChainResponse:
     for i in range(n - 1, -1, -1):
         e = chain.elements[i]
         al, be, ga = lines[i]
-        if isinstance(e, MEMBERS):
+        if isinstance(e, Member):
             A, B, C, D = e.T(w)
             a1, Q2 = D * a - B * Q, -C * a + A * Q
             use_a = np.abs(be) >= np.abs(al)
@@ -463,7 +463,7 @@ def _back_substitute(chain, w, lines, store, a_end, Q_end) -> ChainResponse:
 def _branch_end(br: Branch, a, Q, w):
     """Propagate a known attachment state outward through a (short) branch."""
     for e in br.elements:
-        if isinstance(e, MEMBERS):
+        if isinstance(e, Member):
             A, B, C, D = e.T(w)
             a, Q = A * a + B * Q, C * a + D * Q
         elif isinstance(e, Ratio):

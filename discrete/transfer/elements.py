@@ -89,8 +89,13 @@ def connection(name: str, p: float, c: float, J: float, ratio: float) -> np.ndar
 
 
 # ----------------------------------------------------------------- chain elements
+class Member:
+    """A two-section member with a 2x2 transfer matrix ``T(p)`` (spring, damper, shaft, parallel
+    connection), as opposed to the shunts (inertia, ground, load, branch) and ratios."""
+
+
 @dataclass(frozen=True)
-class Spring:
+class Spring(Member):
     """Member of stiffness c; ``delta`` gives the complex stiffness c (1 + 2 i delta) (10.63)."""
 
     c: float
@@ -129,7 +134,7 @@ class Spring:
 
 
 @dataclass(frozen=True)
-class Damper:
+class Damper(Member):
     """Viscous damper (10.64): member with B = 1/(i b omega) (forced response only)."""
 
     b: float
@@ -150,7 +155,7 @@ class Damper:
 
 
 @dataclass(frozen=True)
-class Shaft:
+class Shaft(Member):
     """Continuous uniform torsion segment (exact): length l, stiffness GI, inertia per length rho.
     beta = p sqrt(rho/GI); A = D = cos(beta l), B = sin(beta l)/(GI beta), C = -GI beta sin(beta l)."""
 
@@ -277,69 +282,6 @@ class Branch:
         return all(getattr(e, "real", True) for e in self.elements)
 
 
-@dataclass(frozen=True, eq=False)
-class Parallel:
-    """Member made of sub-chains connected in parallel between the same two sections (10.7)-(10.9).
-    Each sub-chain (listed input -> output) needs an elastic element (B != 0).  Its dynamic
-    stiffness is [[g1, -g2], [-g2, g3]] with g1 = sum A/B, g2 = sum 1/B, g3 = sum D/B; its
-    clamped-end count is the sum of the sub-chains' clamped-clamped counts."""
-
-    chains: tuple = field(default_factory=tuple)
-
-    def __post_init__(self):
-        object.__setattr__(self, "chains", tuple(tuple(c) for c in self.chains))
-        if len(self.chains) < 2:
-            raise ModelError("parallel", "chains", len(self.chains), "at least two sub-chains")
-        for i, ch in enumerate(self.chains):
-            if not any(isinstance(e, (Spring, Shaft, Damper)) for e in ch) or not isinstance(ch[-1], (Spring, Shaft, Damper)) \
-                    or not isinstance(ch[0], (Spring, Shaft, Damper)):
-                raise ModelError("parallel", f"chains[{i}]", [type(e).__name__ for e in ch],
-                                 "a sub-chain that starts and ends with an elastic member (B != 0)")
-
-    @property
-    def real(self) -> bool:
-        return all(getattr(e, "real", True) for ch in self.chains for e in ch)
-
-    def _mats(self, p):
-        from .chain import element_matrix
-
-        p = np.atleast_1d(_arr(p))
-        out = []
-        for ch in self.chains:
-            G = np.empty((p.size, 2, 2), dtype=complex if not self.real else float)
-            for i, q in enumerate(p):
-                M = np.eye(2)
-                for e in ch:
-                    M = element_matrix(e, q) @ M
-                G[i] = M
-            out.append(G)
-        return out
-
-    def _gammas(self, p):
-        mats = self._mats(p)
-        g1 = sum(G[:, 0, 0] / G[:, 0, 1] for G in mats)
-        g2 = sum(1.0 / G[:, 0, 1] for G in mats)
-        g3 = sum(G[:, 1, 1] / G[:, 0, 1] for G in mats)
-        return g1, g2, g3
-
-    def T(self, p):
-        g1, g2, g3 = self._gammas(p)
-        return g1 / g2, 1.0 / g2, (g1 * g3 - g2**2) / g2, g3 / g2
-
-    def stiffness(self, p):
-        g1, g2, g3 = self._gammas(p)
-        return g1, -g2, g3
-
-    def det_stiffness(self, p):
-        g1, g2, g3 = self._gammas(p)
-        return g1 * g3 - g2**2
-
-    def count(self, p):
-        from .chain import Chain, count_below
-
-        return sum(count_below(Chain(list(ch), "clamped", "clamped"), p) for ch in self.chains)
-
-
 def mechanism_branch(m: float, c: float, ratio: float, *, end: str = "free", load: complex = 0.0,
                      delta: float = 0.0) -> Branch:
     """The 1-DOF cyclic mechanism of Fig. 10.2: Pi' - c - m (output mass m, force ``load`` on it)."""
@@ -348,5 +290,4 @@ def mechanism_branch(m: float, c: float, ratio: float, *, end: str = "free", loa
     return Branch((Ratio(ratio), Spring(c, delta), Inertia(m)), end=end, load=load)
 
 
-MEMBERS = (Spring, Damper, Shaft, Parallel)
 SHUNTS = (Inertia, Ground, Load, Branch)

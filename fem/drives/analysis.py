@@ -17,12 +17,12 @@ import numpy as np
 from discrete.errors import ModelError
 from discrete.schema import check_keys, choice, number
 from discrete.transfer import RegularDrive, forced_response, natural_frequencies
-from discrete.transfer.continuum import pseudo_medium_forced, pseudo_medium_frequencies, stop_band
+from discrete.transfer.continuum import pseudo_medium_forced, stop_band
 
 from .continuum import build_continuum
 from .discrete import build_discrete
 from .model import DistributedShaft, DriveModel, parse_drive
-from .seeding import continuum_estimates, seedable
+from .seeding import continuum_estimates, continuum_roots, continuum_sorted, seedable
 from .tm import build_chain
 
 ANALYSIS_KEYS = {"type", "modes", "omega_rad_s", "frequencies_hz", "sweep_hz", "convergence_n"}
@@ -60,17 +60,6 @@ def regular_of(model: DriveModel) -> RegularDrive | None:
                         boundary=model.boundary, output=me.output)
 
 
-def continuum_roots(model: DriveModel, n_r: int) -> tuple[np.ndarray, np.ndarray]:
-    """(10.50) generalised to the boundary case: (lower, upper) roots for r = 1..n_r."""
-    s = model.smeared()
-    return pseudo_medium_frequencies(s["GI"], s["rho"], s["m_bar"], s["k"], s["ratio"], s["L"], model.boundary, n_r)
-
-
-def continuum_sorted(model: DriveModel, n: int) -> np.ndarray:
-    lo, hi = continuum_roots(model, n)
-    return np.sort(np.concatenate([lo, hi]))[:n]
-
-
 def _default_modes(model: DriveModel, an: dict, n_modes):
     if n_modes is None:
         n_modes = an.get("modes", min(6, 2 * model.n))
@@ -103,7 +92,7 @@ def fe_modes(model: DriveModel, system, n_modes: int):
     """Sparse FE modal analysis of the discrete drive.  Large drives crowd their lower-branch
     roots below k, where shift-invert Lanczos needs hundreds of iterations: there the
     certified seeded solver starts from the pseudo-medium estimates (:mod:`.seeding`)."""
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     if seedable(model, system, n_modes):
         lam, rows = continuum_estimates(model, system, n_modes + 1)
@@ -178,7 +167,7 @@ class DriveModalResult:
 
 def modal(model: DriveModel, n_modes: int, representation: str | None = None) -> DriveModalResult:
     """Lowest ``n_modes`` natural frequencies of ``model`` by one representation."""
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     rep = representation or model.representation
     reg = regular_of(model)
@@ -303,7 +292,7 @@ class DriveForcedResult:
 def forced(model: DriveModel, omegas, representation: str | None = None, delta: float = 0.0,
            damping_name: str = "undamped") -> DriveForcedResult:
     """Steady-state response to the force ``model.force`` on every mechanism output."""
-    from fem.harmonic import Damping, harmonic_response
+    from discrete.linear.harmonic import Damping, harmonic_response
 
     rep = representation or model.representation
     omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
@@ -376,7 +365,7 @@ def _branches(omega: np.ndarray, k: float, R: int) -> tuple[np.ndarray, np.ndarr
 
 def branch_roots(model: DriveModel, representation: str, R: int) -> tuple[np.ndarray, np.ndarray]:
     """(lower, upper) branch roots r = 1..R (lower: below k, in-phase; upper: above p_*)."""
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     k = model.mechanism.k
     if representation == "transfer-matrix":

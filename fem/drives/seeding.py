@@ -1,5 +1,5 @@
 """Pseudo-medium estimates of a discrete drive's lowest modes: seeds and start vectors for
-the certified seeded solver :func:`fem.seeded.seeded_eigenpairs`.
+the certified seeded solver :func:`discrete.linalg.seeded.seeded_eigenpairs`.
 
 The continuum (§10.5) has the shaft shapes of a uniform rod, theta_r(x) = sin(s_r x) or
 cos(s_r x) with s_r L from :func:`discrete.transfer.continuum.eigen_lambdas`, and per shape
@@ -13,9 +13,20 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.transfer.continuum import eigen_lambdas
+from discrete.transfer.continuum import eigen_lambdas, pseudo_medium_frequencies
 
 from .model import DriveModel
+
+
+def continuum_roots(model: DriveModel, n_r: int) -> tuple[np.ndarray, np.ndarray]:
+    """(10.50) generalised to the boundary case: (lower, upper) roots for r = 1..n_r."""
+    s = model.smeared()
+    return pseudo_medium_frequencies(s["GI"], s["rho"], s["m_bar"], s["k"], s["ratio"], s["L"], model.boundary, n_r)
+
+
+def continuum_sorted(model: DriveModel, n: int) -> np.ndarray:
+    lo, hi = continuum_roots(model, n)
+    return np.sort(np.concatenate([lo, hi]))[:n]
 
 
 def seedable(model: DriveModel, system, n_modes: int) -> bool:
@@ -32,8 +43,6 @@ def seedable(model: DriveModel, system, n_modes: int) -> bool:
 def continuum_estimates(model: DriveModel, system, q: int) -> tuple[np.ndarray, np.ndarray]:
     """The ``q`` lowest continuum eigenvalues (rad^2/s^2) and their shapes sampled at the
     free DOFs of ``system`` (rows), from the drive's smeared parameters."""
-    from .analysis import continuum_roots
-
     lo, hi = continuum_roots(model, q)
     r = np.concatenate([np.arange(q), np.arange(q)])
     lam = np.concatenate([lo, hi]) ** 2

@@ -25,7 +25,7 @@ from discrete.linear_system import LinearSystem
 from discrete.nonsmooth import ExternalForce, MotionLaw, Problem
 
 from ..assembly import FEModel
-from ..reduction import ReducedModel, reduce
+from discrete.linear.reduction import ReducedModel, reduce
 
 
 @dataclass

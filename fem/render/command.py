@@ -27,7 +27,7 @@ def render_model_file(model, out_dir, n_modes: int | None = None, gif: bool = Fa
     ``modes.json`` and the PNG/GIF files into ``out_dir``.  ``report.rendered`` is False
     (with ``report.message`` naming the missing library) if VTK cannot render here."""
     from ..export import ensure_directory, write_modal_table, write_modes
-    from ..modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
     from ..modelfile import ModelFile, load_model_file
     from .backend import RenderUnavailable
     from .images import mode_indices, render_modes

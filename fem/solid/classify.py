@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..modal import ModalResult, modal_analysis
+from discrete.linear.modal import ModalResult, modal_analysis
 
 KINDS = ("bending", "torsion", "axial")
 

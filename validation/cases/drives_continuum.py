@@ -9,7 +9,7 @@ import numpy as np
 from fem.drives import DistributedShaft, DriveModel, Mechanism
 from fem.drives.continuum import build_continuum
 from fem.drives.discrete import build_discrete
-from fem.modal import modal_analysis
+from discrete.linear.modal import modal_analysis
 from validation.analytic import drives as ref
 from validation.registry import case, check, claim, printed
 

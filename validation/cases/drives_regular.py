@@ -108,7 +108,7 @@ def drives_seeded_large_n():
     from discrete.errors import SolverError
     from fem.drives.discrete import build_discrete
     from fem.drives.seeding import continuum_estimates
-    from fem.seeded import seeded_eigenpairs
+    from discrete.linalg.seeded import seeded_eigenpairs
 
     out, n, k = [], 1000, 20
     for boundary, bcase in (("clamped-free", 2), ("clamped-clamped", 1)):
@@ -118,7 +118,7 @@ def drives_seeded_large_n():
         res = modal(model, k, "discrete")
         out.append(check("drives-seeded-large-n", SRC, f"max rel. diff of the lowest {k} roots, n = {n}, case {bcase}",
                          0.0, np.max(np.abs(res.omega_rad_s / expected - 1)), 1e-12, scale=1.0))
-        out.append(claim("drives-seeded-large-n", "fem.seeded", f"seeded solver used and certified, case {bcase}",
+        out.append(claim("drives-seeded-large-n", "discrete.linalg.seeded", f"seeded solver used and certified, case {bcase}",
                          res.method.startswith("seeded") and f"Sylvester count {k} below" in res.method,
                          note=res.method))
         crowd = expected[1:] / 300.0
@@ -133,5 +133,5 @@ def drives_seeded_large_n():
         refused = False
     except SolverError:
         refused = True
-    out.append(claim("drives-seeded-large-n", "fem.seeded", "estimates skipping mode 1: the solver refuses", refused))
+    out.append(claim("drives-seeded-large-n", "discrete.linalg.seeded", "estimates skipping mode 1: the solver refuses", refused))
     return out

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from fem import assemble, modal_analysis
-from fem.reduction import reduce
+from discrete.linear.reduction import reduce
 from validation.analytic.bending import euler_bernoulli_roots
 from validation.builders import uniform
 from validation.registry import case, check, claim

@@ -11,7 +11,7 @@ from scipy.optimize import minimize_scalar
 
 from discrete.lumped import LumpedModel
 from fem import assemble, modal_analysis
-from fem.harmonic import Damping, harmonic_response
+from discrete.linear.harmonic import Damping, harmonic_response
 from validation.analytic import sdof
 from validation.analytic.torsion import forced_torsion_end_amplitude
 from validation.builders import unit_section, uniform

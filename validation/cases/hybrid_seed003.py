@@ -76,7 +76,7 @@ def run_example(kind: str, beta: float, **kw) -> dict:
 
 def run_example_doc(ex: dict) -> dict:
     from fem.hybrid import run_model_file
-    from fem.modal import modal_analysis
+    from discrete.linear.modal import modal_analysis
 
     r = run_model_file(ex["doc"])
     sys_ = r.fe.system

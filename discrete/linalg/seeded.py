@@ -8,7 +8,7 @@ Estimates of the wanted eigenpairs are cheap -- the pseudo-medium roots (10.50) 
 are good to O(1/n) in the distance to k -- and turn the problem into one of refinement:
 
 1. one shift per estimate; all shifted matrices factorised at once
-   (:class:`fem.shifted.ShiftedSolver`);
+   (:class:`discrete.linalg.shifted.ShiftedSolver`);
 2. inverse iteration of the block, each vector with its own shift, each step followed by a
    Rayleigh-Ritz step (which separates vectors drawn to the same eigenvalue), from the
    estimated vectors or from random ones after two plain steps; the shifts move to the
@@ -27,7 +27,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
-from discrete.errors import ModelError, SolverError
+from ..errors import ModelError, SolverError
 
 from .blas import single_threaded_blas
 from .shifted import ShiftedSolver, is_diagonal

@@ -28,7 +28,7 @@ import scipy.sparse.linalg as spla
 from scipy.linalg import lapack
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 
-from discrete.errors import SolverError
+from ..errors import SolverError
 
 EPS = np.finfo(float).eps
 

@@ -5,8 +5,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.errors import ModelError, SolverError
-from discrete.linear_system import LinearSystem
+from ..errors import ModelError, SolverError
+from ..linear_system import LinearSystem
 
 
 def static_deflection(system: LinearSystem, force: np.ndarray) -> np.ndarray:

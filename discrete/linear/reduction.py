@@ -36,8 +36,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.errors import ModelError, SolverError
-from discrete.linear_system import LinearSystem
+from ..errors import ModelError, SolverError
+from ..linear_system import LinearSystem
 
 from .modal import EPS, _factor, modal_analysis
 

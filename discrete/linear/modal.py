@@ -16,7 +16,7 @@ low modes of ill-conditioned FE matrices.  Each mode carries three checks:
   information, it is typically 100-1000 times pessimistic.
 
 Crowded spectra with good eigenvalue estimates (``seeds``; large drives pass the
-pseudo-medium roots) go to the certified seeded solver :mod:`fem.seeded` -- multi-shift
+pseudo-medium roots) go to the certified seeded solver :mod:`discrete.linalg.seeded` -- multi-shift
 inverse iteration with a Sylvester-count certificate -- and back to shift-invert Lanczos if
 it cannot certify its result.
 
@@ -35,12 +35,12 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.errors import ModelError, SolverError
-from discrete.linear_system import LinearSystem
+from ..errors import ModelError, SolverError
+from ..linear_system import LinearSystem
 
-from .blas import single_threaded_blas
-from .seeded import seeded_eigenpairs
-from .shifted import ShiftedSolver, is_diagonal
+from ..linalg.blas import single_threaded_blas
+from ..linalg.seeded import seeded_eigenpairs
+from ..linalg.shifted import ShiftedSolver, is_diagonal
 
 EPS = np.finfo(float).eps
 
@@ -105,7 +105,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
 
     ``seeds``: estimates of the lowest ``n_modes + 1`` eigenvalues (rad^2/s^2), optionally with
     estimated vectors ``seed_vectors`` (one row per seed over the free DOFs), for spectra that
-    crowd (drives of many mechanisms): the certified seeded solver :mod:`fem.seeded` is used,
+    crowd (drives of many mechanisms): the certified seeded solver :mod:`discrete.linalg.seeded` is used,
     and shift-invert Lanczos below the seeds if it cannot certify its result."""
     n = system.n_free
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n:
@@ -231,7 +231,7 @@ def _factor(A: sp.spmatrix):
 
 def _eigsh(K, M, k, sigma, lu, tol=0.0):
     """ARPACK in shift-invert mode; its dense kernels are tiny (n x ncv), so the solve runs
-    with single-threaded BLAS (:mod:`fem.blas`)."""
+    with single-threaded BLAS (:mod:`discrete.linalg.blas`)."""
     n = K.shape[0]
     op = spla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
     ncv = min(n, max(2 * k + 1, 20))
