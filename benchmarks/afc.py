@@ -26,12 +26,13 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from discrete.steady import HBModel, ShootingModel, SteadyModel, run_forced  # noqa: E402
+from discrete.steady import HBModel, ShootingModel  # noqa: E402
+from fem.study import forced, steady_model
 from validation.analytic.steady_seed002 import AMPLITUDES, K_NAT, seed002_doc  # noqa: E402
 
 
 def brute_force(a, zs):
-    sm = SteadyModel(seed002_doc(a, "simple"))
+    sm = steady_model(seed002_doc(a, "simple"))
     sh = ShootingModel(sm.factory, steps_per_period=48)
     y = np.zeros(2)
     mus = []
@@ -45,13 +46,13 @@ def brute_force(a, zs):
 
 
 def continuation(a, ds_max):
-    return run_forced(seed002_doc(a, "simple", z=(0.3, 2.0), ds_max=ds_max))
+    return forced(seed002_doc(a, "simple", z=(0.3, 2.0), ds_max=ds_max))
 
 
 def reference_peak(a, r):
     from scipy.optimize import minimize_scalar
 
-    sm = SteadyModel(seed002_doc(a, "simple"))
+    sm = steady_model(seed002_doc(a, "simple"))
     hb = HBModel(sm.system, harmonics=15)
     i = int(np.argmax(r.response))
     state = {"X": r.states[i]}
@@ -122,11 +123,11 @@ def figure(path):
     for ax, fr, title in ((axes[0], "simple", "simplified (viscous) friction, Fig. 4"),
                           (axes[1], "combined", "combined power-law friction, Fig. 5")):
         for a in AMPLITUDES:
-            r = run_forced(seed002_doc(a, fr, z=(0.3, 2.0)))
+            r = forced(seed002_doc(a, fr, z=(0.3, 2.0)))
             plot_afc(r, None, ax=ax, label=f"a = {a:g} m")
         if fr == "simple":   # the period-2 zone at a = 8.6e-4: shooting (subharmonic = 2) continued from z = 1.18
             for zr in ((1.18, 1.4), (1.18, 1.0)):
-                r2 = run_forced(seed002_doc(8.6e-4, fr, z=zr, method="shooting", subharmonic=2, ds=0.05,
+                r2 = forced(seed002_doc(8.6e-4, fr, z=zr, method="shooting", subharmonic=2, ds=0.05,
                                             ds_max=0.1, max_steps=40))
                 plot_afc(r2, None, ax=ax, label="a = 0.00086 m, period 2T (shooting)" if zr[1] > 1.18 else "_nolegend_")
         ax.set_title(title)

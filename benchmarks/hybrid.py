@@ -19,7 +19,7 @@ import time
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from fem.hybrid import run_model_file  # noqa: E402
+from fem.study import simulate  # noqa: E402
 from validation.cases.hybrid_drill_string import variant as drill_variant  # noqa: E402
 from validation.cases.hybrid_vibro_impact import impact_metrics, variant  # noqa: E402
 
@@ -62,11 +62,11 @@ def main(argv=None) -> int:
           "(target >= 20x)")
     # events per second
     t0 = time.perf_counter()
-    r = run_model_file(variant(chosen, t_end=2.0, elements=n))
+    r = simulate(variant(chosen, t_end=2.0, elements=n))
     dt = time.perf_counter() - t0
     print(f"vibro-impact, reduced: {len(r.events)} events in {dt:.3f} s = {len(r.events) / dt:.0f} events/s")
     t0 = time.perf_counter()
-    r = run_model_file(drill_variant(0.01, 8, 2, t_end=40.0))
+    r = simulate(drill_variant(0.01, 8, 2, t_end=40.0))
     dt = time.perf_counter() - t0
     print(f"drill string, reduced (2 modes): {len(r.events)} events in {dt:.3f} s = {len(r.events) / dt:.0f} events/s")
     return 0

@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from fem import Material, Section, Segment, ShaftModel, Support, assemble, modal_analysis  # noqa: E402
 
 STEEL = Material(E=2.1e11, G=8.1e10, rho=7850.0)
-SEC = Section.from_dict({"shape": "circle", "d": 0.05}, "benchmark")
+SEC = Section.circle(0.05)
 
 
 def model(kind: str, n_dofs: int) -> ShaftModel:

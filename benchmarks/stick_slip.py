@@ -27,7 +27,8 @@ import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
 
-from discrete.nonsmooth import Options, build_problem, simulate, simulate_regularised  # noqa: E402
+from discrete.nonsmooth import Options, simulate, simulate_regularised  # noqa: E402
+from fem.study import Study  # noqa: E402
 from validation.analytic import seed000  # noqa: E402
 
 EPS, OMEGA, I, C, M0 = 6.0, 1.0, 2.0, 50.0, 3.0
@@ -63,7 +64,8 @@ def regularised_period(res, d) -> float:
 
 def run_regularised(periods, d, eps_rel, tau_rel):
     doc, _ = model(periods)
-    prob, st = build_problem(doc)
+    study = Study.parse(doc)
+    prob, st = study.problem_spec().problem(), study.simulation_settings()
     t0 = time.perf_counter()
     res = simulate_regularised(prob, st["t_end"], regularisation=eps_rel * d["omega"],
                                memory_time=tau_rel * d["period"], rtol=1e-8, method="LSODA")
@@ -72,7 +74,8 @@ def run_regularised(periods, d, eps_rel, tau_rel):
 
 def run_exact(periods):
     doc, d = model(periods)
-    prob, st = build_problem(doc)
+    study = Study.parse(doc)
+    prob, st = study.problem_spec().problem(), study.simulation_settings()
     t0 = time.perf_counter()
     res = simulate(prob, st["t_end"], Options())
     dt = time.perf_counter() - t0

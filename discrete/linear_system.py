@@ -25,6 +25,16 @@ import scipy.sparse as sp
 from .errors import ModelError
 
 
+def check_finite(where: str, **matrices) -> None:
+    """Refuse matrices with infinite or NaN entries (a model whose assembly overflows double
+    precision, e.g. stiffnesses near 1e308): every later number would be meaningless."""
+    for name, A in matrices.items():
+        data = A.data if sp.issparse(A) else np.asarray(A)
+        if data.size and not np.all(np.isfinite(data)):
+            raise ModelError(where, name, "inf/NaN entries", "model values whose assembled matrices stay finite in "
+                             "double precision (|entries| < 1.8e308): scale the units or check the inputs")
+
+
 def _csr(a, n: int) -> sp.csr_matrix:
     if a is None:
         return sp.csr_matrix((n, n))
@@ -55,6 +65,7 @@ class LinearSystem:
         self.C = _csr(self.C, n)
         self.H = _csr(self.H, n)
         self.G = _csr(self.G, n)
+        check_finite(self.title or "model", M=self.M, K=self.K, C=self.C, H=self.H, G=self.G)
         for name in ("K", "C", "H", "G"):
             if getattr(self, name).shape != (n, n):
                 raise ValueError(f"LinearSystem: {name} has shape {getattr(self, name).shape}, expected {(n, n)}")

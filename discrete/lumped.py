@@ -19,8 +19,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from .errors import ModelError
-from .linear_system import LinearSystem
-from .schema import check_keys, number
+from .linear_system import LinearSystem, check_finite
 
 GROUND = "ground"
 
@@ -37,7 +36,7 @@ class Body:
 
 @dataclass
 class Driver:
-    """Prescribed motion x(t) = velocity t + amplitude sin(omega t + phase)."""
+    """Prescribed motion x(t) = offset + velocity t + amplitude sin(omega t + phase)."""
 
     name: str
     velocity: float | None = None
@@ -45,9 +44,10 @@ class Driver:
     omega: float = 0.0
     phase: float = 0.0
     inertia: float = 0.0
+    offset: float = 0.0
 
     def position(self, t):
-        return (self.velocity or 0.0) * t + self.amplitude * np.sin(self.omega * t + self.phase)
+        return self.offset + (self.velocity or 0.0) * t + self.amplitude * np.sin(self.omega * t + self.phase)
 
     def velocity_at(self, t):
         return (self.velocity or 0.0) + self.amplitude * self.omega * np.cos(self.omega * t + self.phase)
@@ -172,6 +172,7 @@ class LumpedModel:
         K = T.T @ self._link_matrix(self.springs) @ T
         C = T.T @ self._link_matrix(self.dampers) @ T
         H = T.T @ self._link_matrix(self.springs, use_psi=True) @ T
+        check_finite(self.title or "lumped model", M=M, K=K, C=C, H=H)
         drivers = {d.name for d in self.drivers}
         constrained = [j for j, n in enumerate(indep) if n in drivers]
         free = [j for j in range(len(indep)) if j not in set(constrained)]
@@ -190,59 +191,3 @@ class LumpedModel:
             if d.name == name:
                 return d
         raise KeyError(name)
-
-    # --------------------------------------------------------------- parsing
-    @classmethod
-    def from_dict(cls, doc: dict) -> "LumpedModel":
-        """Build from the ``body``, ``driver``, ``spring``, ``damper`` and ``gear`` tables of a model file."""
-        bodies = []
-        for i, t in enumerate(doc.get("body", []), 1):
-            w = f"[[body]] #{i}"
-            check_keys(t, {"name", "inertia", "inertia_rate", "reactive", "x0", "v0"}, w)
-            bodies.append(Body(name=t.get("name", ""), inertia=number(t.get("inertia"), "inertia", w),
-                               inertia_rate=number(t.get("inertia_rate", 0.0), "inertia_rate", w),
-                               reactive=number(t.get("reactive", 0.0), "reactive", w),
-                               x0=number(t.get("x0", 0.0), "x0", w), v0=number(t.get("v0", 0.0), "v0", w)))
-        drivers = []
-        for i, t in enumerate(doc.get("driver", []), 1):
-            w = f"[[driver]] #{i}"
-            check_keys(t, {"name", "velocity", "amplitude", "omega", "phase", "inertia"}, w)
-            if "velocity" not in t and "amplitude" not in t:
-                raise ModelError(w, "velocity", None, "a motion law: velocity = v (x = v t) and/or "
-                                 "amplitude = a with omega (x = a sin(omega t + phase))")
-            drivers.append(Driver(name=t.get("name", ""),
-                                  velocity=number(t["velocity"], "velocity", w) if "velocity" in t else None,
-                                  amplitude=number(t.get("amplitude", 0.0), "amplitude", w),
-                                  omega=number(t.get("omega", 0.0), "omega", w, nonnegative=True),
-                                  phase=number(t.get("phase", 0.0), "phase", w),
-                                  inertia=number(t.get("inertia", 0.0), "inertia", w, nonnegative=True)))
-        springs = [_link(t, f"[[spring]] #{i}", "k") for i, t in enumerate(doc.get("spring", []), 1)]
-        dampers = [_link(t, f"[[damper]] #{i}", "c") for i, t in enumerate(doc.get("damper", []), 1)]
-        gears = []
-        for i, t in enumerate(doc.get("gear", []), 1):
-            w = f"[[gear]] #{i}"
-            check_keys(t, {"between", "ratio"}, w)
-            gears.append(Gear(between=_pair(t, w), ratio=number(t.get("ratio"), "ratio", w)))
-        return cls(bodies=bodies, drivers=drivers, springs=springs, dampers=dampers, gears=gears,
-                   title=doc.get("title", ""))
-
-
-def _pair(t: dict, where: str) -> tuple[str, str]:
-    b = t.get("between")
-    if not isinstance(b, list) or len(b) != 2 or not all(isinstance(s, str) for s in b):
-        raise ModelError(where, "between", b, "a list of two names, e.g. [\"ground\", \"disk\"]")
-    return b[0], b[1]
-
-
-def _link(t: dict, where: str, key: str) -> Link:
-    allowed = {"between", key, "ratios"} | ({"psi"} if key == "k" else set())
-    check_keys(t, allowed, where)
-    ratios = t.get("ratios", [1.0, 1.0])
-    if not isinstance(ratios, list) or len(ratios) != 2:
-        raise ModelError(where, "ratios", ratios, "a list [r_a, r_b] of two numbers")
-    ratios = tuple(number(r, "ratios", where) for r in ratios)
-    value = number(t.get(key), key, where)
-    if value < 0:
-        raise ModelError(where, key, value, "a number >= 0")
-    psi = number(t.get("psi", 0.0), "psi", where, nonnegative=True)
-    return Link(between=_pair(t, where), value=value, ratios=ratios, psi=psi)

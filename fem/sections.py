@@ -5,7 +5,6 @@ import math
 from dataclasses import dataclass
 
 from discrete.errors import ModelError
-from discrete.schema import check_keys, number
 
 
 @dataclass(frozen=True)
@@ -21,27 +20,9 @@ class Material:
         return self.E / (2.0 * self.G) - 1.0
 
     @classmethod
-    def from_dict(cls, d: dict, where: str, base: "Material | None" = None) -> "Material":
-        check_keys(d, {"E", "G", "nu", "rho"}, where)
-        E = number(d["E"], "E", where, positive=True) if "E" in d else (base.E if base else None)
-        rho = number(d["rho"], "rho", where, positive=True) if "rho" in d else (base.rho if base else None)
-        if "G" in d and "nu" in d:
-            raise ModelError(where, "nu", d["nu"], "either G or nu, not both")
-        if "G" in d:
-            G = number(d["G"], "G", where, positive=True)
-        elif "nu" in d:
-            nu = number(d["nu"], "nu", where)
-            if not -1.0 < nu < 0.5:
-                raise ModelError(where, "nu", nu, "a Poisson ratio in (-1, 0.5)")
-            if E is None:
-                raise ModelError(where, "E", None, "E must be given with nu")
-            G = E / (2.0 * (1.0 + nu))
-        else:
-            G = base.G if base else None
-        for key, val in (("E", E), ("G", G), ("rho", rho)):
-            if val is None:
-                raise ModelError(where, key, None, "a positive number (in [material] or in the segment)")
-        return cls(E=E, G=G, rho=rho)
+    def with_nu(cls, E: float, nu: float, rho: float) -> "Material":
+        """From Young's modulus and Poisson's ratio: G = E / (2 (1 + nu))."""
+        return cls(E=E, G=E / (2.0 * (1.0 + nu)), rho=rho)
 
 
 @dataclass(frozen=True)
@@ -73,47 +54,30 @@ class Section:
         return 6 * (1 + nu) * (1 + m2) ** 2 / ((7 + 6 * nu) * (1 + m2) ** 2 + (20 + 12 * nu) * m2)
 
     @classmethod
-    def from_dict(cls, d: dict, where: str) -> "Section":
-        where = f"{where} section"
-        shape = d.get("shape", "explicit")
-        if shape == "circle":
-            check_keys(d, {"shape", "d", "kappa"}, where)
-            dia = number(d.get("d"), "d", where, positive=True)
-            A, I = math.pi * dia**2 / 4, math.pi * dia**4 / 64
-            sec = cls(A=A, I=I, J=2 * I, Ip=2 * I, shape="circle", d=dia,
-                      kappa=_opt_kappa(d, where))
-        elif shape == "tube":
-            check_keys(d, {"shape", "d", "di", "kappa"}, where)
-            do = number(d.get("d"), "d", where, positive=True)
-            di = number(d.get("di"), "di", where, positive=True)
-            if not di < do:
-                raise ModelError(where, "di", di, f"an inner diameter smaller than d = {do}")
-            A, I = math.pi * (do**2 - di**2) / 4, math.pi * (do**4 - di**4) / 64
-            sec = cls(A=A, I=I, J=2 * I, Ip=2 * I, shape="tube", inner_to_outer=di / do, d=do,
-                      kappa=_opt_kappa(d, where))
-        elif shape == "explicit":
-            check_keys(d, {"shape", "A", "I", "J", "Ip", "kappa"}, where)
-            vals = {k: number(d[k], k, where, positive=True) for k in ("A", "I", "J", "Ip") if k in d}
-            if not vals:
-                raise ModelError(where, "section", d, "{ shape = 'circle', d }, { shape = 'tube', d, di } "
-                                 "or explicit { A, I, J } constants")
-            sec = cls(A=vals.get("A", math.nan), I=vals.get("I", math.nan), J=vals.get("J", math.nan),
-                      Ip=vals.get("Ip", vals.get("J", math.nan)), kappa=_opt_kappa(d, where))
-        else:
-            raise ModelError(where, "shape", shape, "'circle' | 'tube' | 'explicit' (or give A, I, J)")
-        return sec
+    def circle(cls, d: float, kappa: float | None = None) -> "Section":
+        """Solid circular section of diameter d (m)."""
+        A, I = math.pi * d**2 / 4, math.pi * d**4 / 64
+        return cls(A=A, I=I, J=2 * I, Ip=2 * I, shape="circle", d=d, kappa=kappa)
+
+    @classmethod
+    def tube(cls, d: float, di: float, kappa: float | None = None) -> "Section":
+        """Hollow circular section, outer diameter d, inner di < d (m)."""
+        if not 0 < di < d:
+            raise ModelError("section", "di", di, f"an inner diameter in (0, d = {d})")
+        A, I = math.pi * (d**2 - di**2) / 4, math.pi * (d**4 - di**4) / 64
+        return cls(A=A, I=I, J=2 * I, Ip=2 * I, shape="tube", inner_to_outer=di / d, d=d, kappa=kappa)
+
+    @classmethod
+    def explicit(cls, A: float | None = None, I: float | None = None, J: float | None = None,
+                 Ip: float | None = None, kappa: float | None = None) -> "Section":
+        """Section constants given directly; the missing ones are unknown (NaN) and an error
+        where a physics needs them; Ip defaults to J."""
+        nan = math.nan
+        return cls(A=nan if A is None else A, I=nan if I is None else I, J=nan if J is None else J,
+                   Ip=(J if Ip is None else Ip) if (Ip is not None or J is not None) else nan, kappa=kappa)
 
     def need(self, attr: str, where: str, physics: str) -> float:
         val = getattr(self, attr)
         if val is None or not math.isfinite(val):
             raise ModelError(f"{where} section", attr, None, f"a positive number (needed for {physics})")
         return val
-
-
-def _opt_kappa(d: dict, where: str) -> float | None:
-    if "kappa" not in d:
-        return None
-    k = number(d["kappa"], "kappa", where, positive=True)
-    if k > 1.5:
-        raise ModelError(where, "kappa", k, "a shear coefficient in (0, 1.5] (about 0.85-0.9 for solid shafts)")
-    return k

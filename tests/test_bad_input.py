@@ -7,11 +7,18 @@ import numpy as np
 import pytest
 
 from discrete.errors import ModelError
-from discrete.lumped import LumpedModel
-from fem import assemble, modal_analysis
 from discrete.linear.harmonic import harmonic_response
-from fem.modelfile import parse_forced, parse_model
 from discrete.linear.static import static_deflection
+from fem import assemble, modal_analysis
+from fem.modelfile.build.linear import forced_spec
+from fem.study import Study
+
+
+def parse_model(doc):
+    """The built shaft of an FE model dict (schema and model checks)."""
+    study = Study.parse(doc)
+    study.shaft
+    return study
 
 BASE = {
     "material": {"E": 2.1e11, "G": 8.1e10, "rho": 7850.0},
@@ -51,7 +58,7 @@ DELETE = object()
     (("support", 0, "x"), 1.5, r"\[\[support\]\] #1: x = 1.5 .*0 <= x <= 1"),
     (("support", 0, "type"), "welded", r"type = 'welded' .*'clamped' \| 'pinned' \| 'spring'"),
     (("segment", 0, "lenght"), 1.0, r"lenght = 1.0 .*unknown keys are an error"),
-    (("frobnicate",), 1, r"top level\): frobnicate = 1 .*unknown keys are an error"),
+    (("frobnicate",), 1, r"model file \(fe\): frobnicate = 1 .*unknown keys are an error"),
     (("model", "physics"), "acoustic", r"physics = 'acoustic' .*'torsion' \| 'axial' \| 'bending'"),
     (("model", "mass"), "diagonal", r"mass = 'diagonal' .*'consistent' \| 'lumped'"),
 ])
@@ -81,19 +88,19 @@ def test_timoshenko_explicit_section_needs_kappa():
     doc = with_(("model",), {"physics": "bending", "theory": "timoshenko"})
     doc["segment"][0]["section"] = {"A": 1e-3, "I": 1e-7, "J": 2e-7}
     with pytest.raises(ModelError, match=r"kappa = None .*shear coefficient"):
-        assemble(parse_model(doc).model)
+        assemble(parse_model(doc).shaft)
 
 
 def test_free_free_more_modes_than_dofs():
     doc = with_(("support",), [])
     doc["segment"][0]["elements"] = 2
-    fe = assemble(parse_model(doc).model)
+    fe = assemble(parse_model(doc).shaft)
     with pytest.raises(ModelError, match=r"modes = 7 .*from 1 to 6"):
         modal_analysis(fe.system, 7)
 
 
 def test_singular_static_problem():
-    fe = assemble(parse_model(with_(("support",), [{"x": 0.0, "type": "pinned"}])).model)
+    fe = assemble(parse_model(with_(("support",), [{"x": 0.0, "type": "pinned"}])).shaft)
     F = np.zeros(fe.system.n_dofs)
     F[fe.system.dof_index(field="w", x=1.0)] = 1.0
     with pytest.raises(ModelError, match=r"1 rigid-body mode\(s\).*singular"):
@@ -107,51 +114,55 @@ def test_load_and_base_motion_placement():
     doc["load"] = [{"x": 0.0, "dof": "w", "amplitude": 1.0}]
     mf = parse_model(doc)
     with pytest.raises(ModelError, match=r"\[\[load\]\] #1: x = 0.0 .*free DOF"):
-        parse_forced(mf, mf.linear_system())
+        forced_spec(mf.doc, mf.linear_system())
     doc["load"] = [{"x": 0.5, "dof": "theta", "amplitude": 1.0}]
     mf = parse_model(doc)
     with pytest.raises(ModelError, match=r"dof = 'theta' .*'w', 'w_x'"):
-        parse_forced(mf, mf.linear_system())
+        forced_spec(mf.doc, mf.linear_system())
     doc["load"] = [{"x": 0.55, "dof": "w", "amplitude": 1.0}]
     mf = parse_model(doc)
     with pytest.raises(ModelError, match=r"x = 0.55 .*node position.*nearest node at x = 0.5"):
-        parse_forced(mf, mf.linear_system())
+        forced_spec(mf.doc, mf.linear_system())
     del doc["load"]
     doc["base_motion"] = [{"x": 1.0, "dof": "w", "amplitude": 1e-3}]
     mf = parse_model(doc)
     with pytest.raises(ModelError, match=r"\[\[base_motion\]\] #1: x = 1.0 .*held DOF"):
-        parse_forced(mf, mf.linear_system())
+        forced_spec(mf.doc, mf.linear_system())
 
 
 def test_forced_needs_frequencies_and_load():
     doc = with_(("analysis",), {"type": "forced"})
-    mf = parse_model(doc)
+    with pytest.raises(ModelError, match=r"\[analysis\]: frequencies_hz = None .*exactly one of frequencies_hz"):
+        parse_model(doc)
+    doc = with_(("analysis",), {"type": "forced", "frequencies_hz": [1.0], "omega_rad_s": [2.0]})
     with pytest.raises(ModelError, match=r"exactly one of frequencies_hz"):
-        parse_forced(mf, mf.linear_system())
+        parse_model(doc)
 
 
 @pytest.mark.parametrize("doc,pattern", [
-    ({"body": [{"name": "a", "inertia": -1.0}]}, r"\[\[body\]\] #1 \(a\): inertia = -1.0 .*> 0"),
+    ({"body": [{"name": "a", "inertia": -1.0}]}, r"\[\[body\]\] #1: inertia = -1.0 .*> 0"),
     ({"body": [{"name": "a", "inertia": 1.0}], "spring": [{"between": ["a", "b"], "k": 1.0}]},
      r"\[\[spring\]\] #1: between = 'b' .*'a', 'ground'"),
     ({"body": [{"name": "a", "inertia": 1.0}], "spring": [{"between": ["ground", "a"], "k": -5.0}]},
      r"k = -5.0 .*>= 0"),
     ({"body": [{"name": "a", "inertia": 1.0}, {"name": "a", "inertia": 2.0}]}, r"name = 'a' .*unique"),
-    ({"body": [{"name": "a", "inertia": 1.0}], "driver": [{"name": "d"}]}, r"\[\[driver\]\] #1: velocity = None .*motion law"),
+    ({"body": [{"name": "a", "inertia": 1.0}], "driver": [{"velocity": 1.0}]}, r"\[\[driver\]\] #1: name = None .*required"),
+    ({"body": [{"name": "a", "inertia": 1.0}], "driver": [{"name": "d", "amplitude": 1.0}]},
+     r"\[\[driver\]\] #1: omega = 0.0 .*> 0 with amplitude"),
     ({"body": [{"name": "a", "inertia": 1.0, "mass": 2.0}]}, r"mass = 2.0 .*unknown keys"),
 ])
 def test_lumped_errors(doc, pattern):
     with pytest.raises(ModelError, match=pattern):
-        LumpedModel.from_dict(doc)
+        Study.parse(doc).lumped
 
 
 def test_cli_reports_bad_input_with_exit_code_2(tmp_path):
     f = tmp_path / "bad.toml"
     f.write_text('[model]\nphysics = "torsion"\ntheory = "timoshenko"\n[material]\nE = 1.0\nG = 1.0\nrho = 1.0\n'
                  '[[segment]]\nlength = 1.0\nelements = 2\nsection = { shape = "circle", d = 0.1 }\n')
-    r = subprocess.run([sys.executable, "-m", "fem.cli", "modal", str(f)], capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-m", "fem.app.cli", "modal", str(f)], capture_output=True, text=True)
     assert r.returncode == 2
     assert "theory = 'timoshenko'" in r.stderr and "bending" in r.stderr
-    r = subprocess.run([sys.executable, "-m", "fem.cli", "modal", str(tmp_path / "missing.toml")],
+    r = subprocess.run([sys.executable, "-m", "fem.app.cli", "modal", str(tmp_path / "missing.toml")],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "existing TOML file" in r.stderr

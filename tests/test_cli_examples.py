@@ -8,17 +8,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fem.cli import main
+from fem.app.cli import main
+from fem.app.demo import _command
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
 
 
 def _kind(path):
-    doc = tomllib.loads(path.read_text())
-    if "sweep" in doc:
-        return "sweep"
-    return "simulate" if "simulation" in doc else doc.get("analysis", {}).get("type", "modal")
+    return _command(path)[0]
 
 
 @pytest.mark.parametrize("path", [p for p in EXAMPLES if _kind(p) in ("modal", "forced")], ids=lambda p: p.name)
@@ -31,7 +29,7 @@ def test_linear_examples_run(path, tmp_path):
 
 def test_modal_json_contract(tmp_path):
     out = tmp_path / "cantilever.json"
-    r = subprocess.run([sys.executable, "-m", "fem.cli", "modal", str(ROOT / "examples" / "cantilever.toml"),
+    r = subprocess.run([sys.executable, "-m", "fem.app.cli", "modal", str(ROOT / "examples" / "cantilever.toml"),
                         "--json", str(out)], capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 0, r.stderr
     data = json.loads(out.read_text())

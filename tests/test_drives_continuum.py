@@ -61,7 +61,7 @@ def test_spectrum_sweep_roots_in_pass_bands_and_plot(tmp_path):
         inside = ((w >= lo[0]) & (w <= lo[1] * (1 + 1e-12))) | ((w >= hi[0] * (1 - 1e-12)) & (w <= hi[1] * (1 + 1e-12)))
         assert inside.all()
     assert np.all(np.diff(sw.upper_band[:, 1]) > 0)       # the band top grows with n (p0 ~ n at fixed totals)
-    from fem.drives.plots import plot_spectrum_vs_n
+    from fem.output.figures import plot_spectrum_vs_n
 
     out = plot_spectrum_vs_n(sw, tmp_path / "s.png")
     assert out.exists() and out.stat().st_size > 10_000

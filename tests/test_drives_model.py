@@ -7,8 +7,25 @@ import numpy as np
 import pytest
 
 from discrete.errors import ModelError
-from fem import drives
-from fem.drives import compare, drive_forced, drive_modal, is_drive, parse_drive
+from fem.modelfile.schema.document import detect_kind
+from fem.output import columns
+from fem.study import Study
+
+
+def drive_modal(doc, n_modes):
+    return Study.parse(doc).modal(n_modes)
+
+
+def drive_forced(doc):
+    return Study.parse(doc).forced()
+
+
+def compare(doc):
+    return Study.parse(doc).compare()
+
+
+def parse_drive(doc):
+    return Study.parse(doc).drive
 
 EX = Path(__file__).resolve().parent.parent / "examples"
 
@@ -18,10 +35,8 @@ def load(name):
         return tomllib.load(fh)
 
 
-def test_entry_point_constants():
-    assert "drive" in drives.TOP_LEVEL_KEYS
-    assert {"title", "analysis", "damping"} <= set(drives.TOP_LEVEL_KEYS)
-    assert is_drive(load("drive_regular.toml")) and not is_drive({"segment": []})
+def test_kind_detection():
+    assert detect_kind(load("drive_regular.toml")) == "drive" and detect_kind({"segment": []}) == "fe"
 
 
 @pytest.mark.parametrize("rep", ["discrete", "transfer-matrix", "continuum"])
@@ -154,7 +169,7 @@ def test_boundaries_three_ways(boundary):
 def test_forced_csv_and_modal_ok(tmp_path):
     doc = load("drive_forced.toml")
     r = drive_forced(doc)
-    r.write_csv(tmp_path / "f.csv")
+    columns.write(tmp_path / "f.csv", columns.drive_forced(r))
     data = np.loadtxt(tmp_path / "f.csv", delimiter=",", skiprows=1)
     assert data.shape == (7, 2 + 4 * 6)
     assert np.allclose(data[:, 2], r.theta[:, 0].real)
@@ -172,7 +187,7 @@ def test_distributed_discrete_reference_is_exact_tm():
 
 
 def test_runner_json_and_exit_codes(tmp_path, capsys):
-    from fem.cli import main
+    from fem.app.cli import main
 
     out = tmp_path / "m.json"
     assert main(["modal", str(EX / "drive_regular.toml"), "--json", str(out)]) == 0

@@ -6,8 +6,8 @@ import pytest
 
 from discrete.errors import ModelError
 from fem import assemble, modal_analysis
-from fem.export import (read_columns, read_modes, read_time_history, write_columns, write_modal_table, write_modes,
-                        write_time_history)
+from fem.output.mesh import read_modes, read_time_history, write_modes, write_time_history
+from fem.output.tablefile import read_columns, write_columns, write_modal_table
 from validation.builders import uniform
 
 L = 1.2

@@ -2,7 +2,7 @@
 import pytest
 
 from discrete.errors import ModelError
-from fem.hybrid import compile_hybrid, parse_hybrid, run_model_file
+from fem.study import Study, simulate
 
 
 def shaft_doc():
@@ -15,8 +15,7 @@ def shaft_doc():
 
 def _err(doc):
     with pytest.raises(ModelError) as exc:
-        model, st = parse_hybrid(doc)
-        compile_hybrid(model)
+        Study.parse(doc).compiled
     return str(exc.value)
 
 
@@ -89,7 +88,7 @@ def test_moreau_needs_dt_and_rejects_gaps():
     d["simulation"]["dt"] = 1e-3
     d["gap"] = [{"x": 1.0, "k": 10.0, "delta": 0.1, "law": "arctan"}]
     with pytest.raises(ModelError, match="event"):
-        run_model_file(d)
+        simulate(d)
 
 
 def test_distributed_friction_range_and_keys():
@@ -114,6 +113,6 @@ def test_low_restitution_is_a_warning_in_the_result():
     d["force"] = [{"x": 1.0, "value": 1.0}]
     d["reduction"] = {"modes": 1, "static_correction": False, "threshold": 0.99}
     d["simulation"]["t_end"] = 0.05
-    r = run_model_file(d)
+    r = simulate(d)
     assert any("restores only" in w for w in r.warnings)
     assert any("restores only" in w for w in r.to_dict()["warnings"])

@@ -6,8 +6,20 @@ import math
 import numpy as np
 import pytest
 
-from fem.hybrid import (compile_hybrid, is_hybrid, parse_hybrid, plot_result, run_model_file,
-                        tributary_weights, write_csv)
+from fem.hybrid import compile_hybrid, tributary_weights
+from fem.modelfile.schema.document import detect_kind
+from fem.output import columns
+from fem.output.figures import plot_hybrid
+from fem.study import Study, simulate
+
+
+def is_hybrid(doc):
+    return detect_kind(doc) == "hybrid"
+
+
+def parse_hybrid(doc):
+    study = Study.parse(doc)
+    return study.hybrid, study.simulation_settings()
 from discrete.linear.reduction import elastic_flexibility
 
 
@@ -103,8 +115,7 @@ def test_tributary_weights_sum_to_length(physics, order, expected):
     if order:
         d["model"]["order"] = order
     from fem.assembly import assemble
-    from fem.modelfile import parse_shaft
-    fe = assemble(parse_shaft(d))
+    fe = assemble(Study.parse(d).shaft)
     fld = "u" if physics == "axial" else "w"
     idx, w = tributary_weights(fe, fld, 0.0, 2.0)
     assert w.sum() == pytest.approx(2.0, rel=1e-12)
@@ -118,7 +129,7 @@ def test_tributary_weights_sum_to_length(physics, order, expected):
 
 
 def test_run_contract_csv_and_plots(tmp_path):
-    r = run_model_file(bar_doc())
+    r = simulate(bar_doc())
     d = r.to_dict()
     json.dumps(d)
     for key in ("t_end", "events", "period", "energy_error", "reduction", "warnings"):
@@ -131,10 +142,11 @@ def test_run_contract_csv_and_plots(tmp_path):
     # the field history is a rigid translation before the impact
     k = np.searchsorted(r.t, 5e-6)
     assert np.allclose(r.field_history[k], r.t[k] * 1.0, rtol=1e-9)
-    p = write_csv(r, tmp_path / "bar.csv")
+    p = tmp_path / "bar.csv"
+    columns.write(p, columns.hybrid(r))
     head = p.read_text().splitlines()[0].split(",")
     assert head[0] == "t" and len(head) == 1 + r.fe.system.n_dofs
-    paths = plot_result(r, tmp_path / "png")
+    paths = plot_hybrid(r, tmp_path / "png")
     assert all(q.exists() and q.stat().st_size > 1000 for q in paths)
 
 
@@ -148,7 +160,7 @@ def test_python_api_with_bodies_and_springs():
     d["spring"] = [{"between": [{"x": 1.0}, "m"], "k": 1e4}]
     d["friction"] = [{"body": "m", "kinetic": 0.5}]
     d["simulation"] = {"t_end": 0.05}
-    r = run_model_file(d)
+    r = simulate(d)
     assert "m" in r.solver.names
     assert r.energy_error < 1e-7
     assert any(e.element == "friction1" for e in r.events)

@@ -5,7 +5,8 @@ import tomllib
 
 import pytest
 
-from fem.hybrid import is_hybrid, run_model_file
+from fem.modelfile.schema.document import detect_kind
+from fem.study import simulate
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 EXAMPLES = sorted((ROOT / "examples").glob("hybrid_*.toml"))
@@ -19,9 +20,9 @@ def test_one_example_per_validation_case():
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.name)
 def test_example_runs_and_json_contract(path):
     doc = tomllib.loads(path.read_text())
-    assert is_hybrid(doc)
+    assert detect_kind(doc) == "hybrid"
     doc["simulation"]["t_end"] = doc["simulation"]["t_end"] / 8
-    r = run_model_file(doc)
+    r = simulate(doc)
     d = json.loads(json.dumps(r.to_dict()))
     assert d["t_end"] == pytest.approx(doc["simulation"]["t_end"])
     assert "period" in d and d["energy_error"] < 1e-5

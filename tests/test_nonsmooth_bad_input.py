@@ -4,7 +4,7 @@ import copy
 import pytest
 
 from discrete.errors import ModelError
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 
 BASE = {"body": [{"name": "disk", "inertia": 1.0}],
         "driver": [{"name": "top", "velocity": 1.0}],
@@ -37,9 +37,9 @@ CASES = [
     (("simulation", "t_end"), 0.0, ["t_end", "0.0", "> 0"]),
     (("simulation", "t_end"), -3.0, ["t_end", "-3.0", "> 0"]),
     (("simulation", "t_end"), KeyError, ["t_end", "required"]),
-    (("simulation", "method"), "magic", ["method", "magic", "'event' | 'regularised'"]),
+    (("simulation", "method"), "magic", ["method", "magic", "'event' | 'moreau' | 'regularised'"]),
     (("simulation",), KeyError, ["simulation", "t_end"]),
-    (("driver", 0, "velocity"), KeyError, ["velocity", "motion law"]),
+    (("driver", 0, "name"), KeyError, ["name", "required"]),
     (("impact",), [{"body": "disk", "restitution": 1.5}], ["restitution", "1.5", "[0, 1]"]),
     (("impact",), [{"body": "disk", "restitution": -0.1}], ["restitution", "-0.1", "[0, 1]"]),
     (("impact",), [{"body": "nobody", "restitution": 0.5}], ["body", "nobody", "'disk'"]),
@@ -60,7 +60,7 @@ CASES = [
 @pytest.mark.parametrize("path,value,words", CASES, ids=[".".join(map(str, c[0])) + "=" + repr(c[1])[:20] for c in CASES])
 def test_bad_input_message(path, value, words):
     with pytest.raises(ModelError) as exc:
-        run_model_file(doc_with(path, value))
+        simulate(doc_with(path, value))
     msg = str(exc.value)
     for w in words:
         assert w in msg, f"{w!r} not in message {msg!r}"
@@ -70,7 +70,7 @@ def test_variable_mass_vanishing():
     d = {"body": [{"name": "m", "inertia": 1.0, "inertia_rate": -1.0}],
          "spring": [{"between": ["ground", "m"], "k": 1.0}], "simulation": {"t_end": 2.0}}
     with pytest.raises(ModelError) as exc:
-        run_model_file(d)
+        simulate(d)
     assert "inertia_rate" in str(exc.value) and "-1.0" in str(exc.value) and "t = 1" in str(exc.value)
 
 
@@ -78,7 +78,7 @@ def test_weight_friction_mu_static_below_mu():
     d = copy.deepcopy(BASE)
     d["friction"] = [{"body": "disk", "mu": 0.3, "mu_static": 0.2, "normal": "weight"}]
     with pytest.raises(ModelError) as exc:
-        run_model_file(d)
+        simulate(d)
     assert "mu_static" in str(exc.value) and "0.2" in str(exc.value) and ">= mu" in str(exc.value)
 
 
@@ -86,14 +86,14 @@ def test_duplicate_element_name():
     d = copy.deepcopy(BASE)
     d["friction"].append({"name": "f", "body": "disk", "kinetic": 1.0})
     with pytest.raises(ModelError) as exc:
-        run_model_file(d)
+        simulate(d)
     assert "name" in str(exc.value) and "'f'" in str(exc.value)
 
 
 def test_event_limit_keeps_results_and_says_where():
     d = copy.deepcopy(BASE)
     d["simulation"] = {"t_end": 100.0, "max_events": 3}
-    res = run_model_file(d)
+    res = simulate(d)
     assert res.stopped_early and "max_events = 3" in res.reason and "t = " in res.reason
     assert res.t[-1] > 0 and len(res.events) == 3
 
@@ -103,7 +103,7 @@ def test_initial_state_on_gear_driven_body():
          "gear": [{"between": ["a", "b"], "ratio": 2.0}],
          "spring": [{"between": ["ground", "a"], "k": 1.0}], "simulation": {"t_end": 1.0}}
     with pytest.raises(ModelError) as exc:
-        run_model_file(d)
+        simulate(d)
     assert "x0" in str(exc.value) and "0.1" in str(exc.value) and "gear" in str(exc.value)
 
 
@@ -111,5 +111,5 @@ def test_tables_of_other_analyses_are_not_silently_ignored():
     d = copy.deepcopy(BASE)
     d["damping"] = {"zeta": 0.02}
     with pytest.raises(ModelError) as exc:
-        run_model_file(d)
-    assert "damping" in str(exc.value) and "not used by the time simulation" in str(exc.value)
+        simulate(d)
+    assert "[damping]" in str(exc.value) and "'modal'" in str(exc.value) and "time simulation" in str(exc.value)

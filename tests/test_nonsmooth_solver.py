@@ -5,8 +5,9 @@ import numpy as np
 import pytest
 
 from discrete.linear_system import LinearSystem
-from discrete.nonsmooth import (Friction, Problem, run_model_file, simulate,
-                                simulate_regularised, build_problem)
+from discrete.nonsmooth import Friction, Problem, simulate, simulate_regularised
+from fem.study import Study
+from fem.study import simulate as simulate_doc
 from validation.analytic import seed000
 
 
@@ -22,7 +23,7 @@ def seed000_doc(eps, Om, restick="kinetic", periods=3.5, I=2.0, c=50.0, M0=3.0):
 @pytest.mark.parametrize("eps,Om", [(2.5, 0.7), (5.5, 1.2), (9.5, 0.4)])
 def test_seed000_period_and_reversals(eps, Om):
     doc, d = seed000_doc(eps, Om)
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     slips = res.event_times("slip")
     assert slips.size >= 3
     assert abs((slips[-1] - slips[-2]) / d["period"] - 1) < 1e-10
@@ -37,7 +38,7 @@ def test_restick_rules_differ():
     """With eps = 6 the kinetic rule reverses twice per period; the static rule sticks at the first stop."""
     doc_k, d = seed000_doc(6.0, 1.0, "kinetic")
     doc_s, _ = seed000_doc(6.0, 1.0, "static")
-    rk, rs = run_model_file(doc_k), run_model_file(doc_s)
+    rk, rs = simulate_doc(doc_k), simulate_doc(doc_s)
     assert len(rk.events_of("reversal")) > 0
     assert len(rs.events_of("reversal")) == 0
     # static rule: one slip arc of the undamped oscillator, then stick (textbook (8.38) form)
@@ -56,7 +57,7 @@ def test_breakaway_not_stepped_over():
            "spring": [{"between": ["d", "b"], "k": c}],
            "friction": [{"name": "f", "body": "b", "kinetic": 0.5 * Fs, "static": Fs}],
            "simulation": {"t_end": 1.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     slips = res.event_times("slip")
     assert slips.size >= 1
     assert slips[0] == pytest.approx(math.asin(Fs / (c * a)) / w, rel=1e-9)
@@ -89,7 +90,7 @@ def test_two_frictions_multi_dof():
            "friction": [{"name": "fa", "body": "a", "kinetic": 1.0, "static": 1.5},
                         {"name": "fb", "body": "b", "kinetic": 2.0, "static": 3.0, "restick": "kinetic"}],
            "simulation": {"t_end": 40.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     assert not res.stopped_early
     assert res.t[-1] == 40.0
     assert res.energy_error < 1e-9
@@ -105,7 +106,8 @@ def test_regularised_alternative_close_to_exact():
     import stick_slip as bench
 
     doc, d = seed000_doc(6.0, 1.0, periods=5.0)
-    prob, st = build_problem(doc)
+    study = Study.parse(doc)
+    prob, st = study.problem_spec().problem(), study.simulation_settings()
     res = simulate_regularised(prob, st["t_end"], regularisation=1e-3 * d["omega"], memory_time=1e-2 * d["period"],
                                rtol=1e-8)
     T = bench.regularised_period(res, d)
@@ -118,7 +120,7 @@ def test_regularised_alternative_close_to_exact():
 def test_event_limit_stops_with_message():
     doc, d = seed000_doc(6.0, 1.0, periods=10)
     doc["simulation"]["max_events"] = 7
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     assert res.stopped_early
     assert "max_events = 7" in res.reason and "t = " in res.reason
     assert len(res.events) == 7 and res.t.size > 2          # what was computed is kept
@@ -130,7 +132,7 @@ def test_impact_between_bodies_momentum_and_restitution():
     doc = {"body": [{"name": "a", "inertia": 1.0, "v0": 1.0}, {"name": "b", "inertia": 3.0, "x0": 1.0}],
            "impact": [{"name": "contact", "between": ["a", "b"], "stop": 0.0, "restitution": 0.6}],
            "simulation": {"t_end": 2.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     (e,) = res.events_of("impact")
     assert e.t == pytest.approx(1.0, rel=1e-12)
     va, vb = e.state["a"]["v"], e.state["b"]["v"]
@@ -153,7 +155,7 @@ def test_gear_reduced_friction_matches_equivalent_body():
              "spring": [{"between": ["motor", "pinion"], "k": 30.0}],
              "friction": [{"name": "f", "body": "pinion", "kinetic": u * 1.0, "static": u * 1.6}],
              "simulation": {"t_end": 30.0}}
-    rg, re_ = run_model_file(geared), run_model_file(equiv)
+    rg, re_ = simulate_doc(geared), simulate_doc(equiv)
     assert rg.period == pytest.approx(re_.period, rel=1e-12)
     np.testing.assert_allclose(rg.event_times(), re_.event_times(), rtol=1e-12)
     w = rg.names.index("wheel") if "wheel" in rg.names else None
@@ -168,7 +170,7 @@ def test_combined_power_law_deceleration():
     doc = {"body": [{"name": "b", "inertia": m, "v0": v0}],
            "friction": [{"name": "f", "body": "b", "kinetic": B1, "quadratic": B3}],
            "simulation": {"t_end": 5.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     a = math.sqrt(B1 / B3)
     tstar = m * math.atan(v0 / a) / (a * B3)
     (st,) = res.events_of("stick")
@@ -184,9 +186,9 @@ def test_penalty_impact_regularised_close_to_event_driven():
            "force": [{"body": "ball", "gravity": True}],
            "impact": [{"name": "floor", "body": "ball", "restitution": 0.7}],
            "simulation": {"t_end": 2.0}}
-    ex = run_model_file(doc)
+    ex = simulate_doc(doc)
     doc["simulation"].update({"method": "regularised", "penalty": 1e7, "rtol": 1e-9})
-    rg = run_model_file(doc)
+    rg = simulate_doc(doc)
     x = rg.x[0]
     # first and second contacts of the penalty model: x crosses 0 downwards
     down = rg.t[1:][(x[:-1] > 0) & (x[1:] <= 0)]
@@ -205,7 +207,7 @@ def test_friction_clutch_between_bodies_breakaway():
            "spring": [{"between": ["motor", "d1"], "k": k}],
            "friction": [{"name": "clutch", "between": ["d1", "d2"], "kinetic": 0.5, "static": Fs}],
            "simulation": {"t_end": 2.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     w = math.sqrt(k / (J1 + J2))
     tb = math.asin(Fs / (J2 * V * w)) / w
     first = res.events[0]
@@ -223,12 +225,12 @@ def test_work_by_source():
            "spring": [{"between": ["ground", "m"], "k": 100.0}],
            "friction": [{"name": "dry", "body": "m", "kinetic": 1.0}],
            "simulation": {"t_end": 20.0}}
-    res = run_model_file(doc)
+    res = simulate_doc(doc)
     assert res.work_parts["friction"] == pytest.approx(0.5 * 100 * (0.005 ** 2 - 1.005 ** 2), rel=1e-12)
     assert set(res.work_parts) == {"friction"}
     ball = {"body": [{"name": "b", "inertia": 0.2, "x0": 1.0}], "force": [{"body": "b", "gravity": True}],
             "impact": [{"name": "floor", "body": "b", "restitution": 0.5}], "constants": {"g": 9.81},
             "simulation": {"t_end": 2.0}}
-    rb = run_model_file(ball).to_dict()
+    rb = simulate_doc(ball).to_dict()
     assert rb["work_parts"]["external"] == pytest.approx(0.2 * 9.81, rel=1e-12)
     assert rb["work_parts"]["impacts"] == pytest.approx(-0.2 * 9.81, rel=1e-8)

@@ -111,7 +111,9 @@ def test_unavailable_still_writes_data(tmp_path, monkeypatch):
     try:
         render.available(refresh=True)
         model = Path(__file__).resolve().parent.parent / "examples" / "cantilever.toml"
-        rep = render.render_model_file(model, tmp_path / "out", n_modes=2)
+        from fem.study import Study
+
+        rep = render.render_study(Study.load(model), tmp_path / "out", n_modes=2)
         assert not rep.rendered and "DRIVEFEM_RENDER" in rep.message
         assert sorted(p.name for p in rep.data_files) == ["modes.csv", "modes.json", "modes.vtu"]
         assert all(p.is_file() for p in rep.data_files) and rep.images == []

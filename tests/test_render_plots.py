@@ -5,7 +5,7 @@ import matplotlib.image as mpimg
 import numpy as np
 
 from fem import assemble, modal_analysis
-from fem import plots_extra as px
+from fem.output.figures import extra as px
 from validation.builders import uniform
 
 
@@ -31,9 +31,9 @@ def test_convergence_and_campbell(tmp_path):
 def test_afc_phase_portrait_time_history(tmp_path):
     f = np.linspace(1, 10, 50)
     afc = SimpleNamespace(frequencies_hz=f, amplitude=1 / np.abs(25 - f**2 + 0.5j * f), outputs=["tip"])
-    assert _ink(px.plot_afc(afc, tmp_path / "afc.png", stable=f < 7)) > 0.005
+    assert _ink(px.plot_amplitude_curve(afc, tmp_path / "afc.png", stable=f < 7)) > 0.005
     t = np.linspace(0, 10, 500)
     ev = [SimpleNamespace(t=ti, state={"disk": {"x": np.sin(ti), "v": np.cos(ti)}}) for ti in (1.0, 4.0)]
     sim = SimpleNamespace(t=t, x=np.array([np.sin(t)]), v=np.array([np.cos(t)]), names=["disk"], events=ev, period=2 * np.pi)
     assert _ink(px.plot_phase_portrait(sim, tmp_path / "pp.png")) > 0.005
-    assert _ink(px.plot_time_history(sim, tmp_path / "th.png")) > 0.005
+    assert _ink(px.plot_time_series(sim, tmp_path / "th.png")) > 0.005

@@ -24,9 +24,9 @@ def _volume(solid):
 def test_stepped_hollow_geometry_is_exact_to_quadratic_order():
     """Volume of a stepped shaft with a bore: the quadratic geometry puts the arcs on the
     circles, so the error is that of quadratic arcs (~(2 pi/N)^4/N) not of polygons (~1 %)."""
-    segs = [Segment(0.2, 2, Section.from_dict({"shape": "tube", "d": 0.06, "di": 0.02}, "s"), STEEL),
-            Segment(0.3, 3, Section.from_dict({"shape": "tube", "d": 0.1, "di": 0.02}, "s"), STEEL),
-            Segment(0.1, 1, Section.from_dict({"shape": "tube", "d": 0.06, "di": 0.02}, "s"), STEEL)]
+    segs = [Segment(0.2, 2, Section.tube(0.06, 0.02), STEEL),
+            Segment(0.3, 3, Section.tube(0.1, 0.02), STEEL),
+            Segment(0.1, 1, Section.tube(0.06, 0.02), STEEL)]
     solid = build_solid(ShaftModel("bending", segs), ShaftMeshSpec(n_quarter=3))
     exact = math.pi / 4 * ((0.06**2 - 0.02**2) * 0.3 + (0.1**2 - 0.02**2) * 0.3)
     assert abs(_volume(solid) / exact - 1) < 5e-4
@@ -114,7 +114,7 @@ def test_bad_input(tmp_path):
 
 def test_solid_export_modes_and_history(tmp_path):
     """3D modes and a 3D time history go through the same export functions as 1D models."""
-    from fem.export import read_modes, read_time_history, write_modes, write_time_history
+    from fem.output.mesh import read_modes, read_time_history, write_modes, write_time_history
 
     solid = build_solid(uniform("bending", 0.3, 3, d=0.1, supports=[(0.0, "clamped")]), ShaftMeshSpec(n_quarter=2))
     res = solid_modal(solid, 3)

@@ -4,7 +4,8 @@ import copy
 import pytest
 
 from discrete.errors import ModelError
-from discrete.steady import is_nonlinear_forced, run_forced
+from fem.study import Study
+from fem.study import forced
 
 BASE = {"body": [{"name": "m", "inertia": 1.0}], "spring": [{"between": ["ground", "m"], "k": 1.0}],
         "damper": [{"between": ["ground", "m"], "c": 0.1}],
@@ -27,7 +28,7 @@ def with_steady(**kw):
 ])
 def test_bad_steady(kw, key):
     with pytest.raises(ModelError) as exc:
-        run_forced(with_steady(**kw))
+        forced(with_steady(**kw))
     assert key in str(exc.value)
 
 
@@ -35,24 +36,24 @@ def test_z_without_ref():
     d = copy.deepcopy(BASE)
     d["steady"] = {"z": [0.5, 1.5]}
     with pytest.raises(ModelError, match="omega_ref"):
-        run_forced(d)
+        forced(d)
 
 
 def test_no_harmonic_excitation():
     d = copy.deepcopy(BASE)
     d["force"][0]["amplitude"] = 0.0
     with pytest.raises(ModelError, match="harmonic"):
-        run_forced(d)
+        forced(d)
 
 
 def test_cubic_bad():
     d = copy.deepcopy(BASE)
     d["cubic_spring"] = [{"between": ["ground", "m"]}]
     with pytest.raises(ModelError, match="k3"):
-        run_forced(d)
+        forced(d)
     d["cubic_spring"] = [{"between": ["ground", "m"], "k3": 1.0, "foo": 2}]
     with pytest.raises(ModelError, match="foo"):
-        run_forced(d)
+        forced(d)
 
 
 def test_shooting_refuses_cubic_and_hb_refuses_impact():
@@ -60,12 +61,13 @@ def test_shooting_refuses_cubic_and_hb_refuses_impact():
     d["cubic_spring"] = [{"between": ["ground", "m"], "k3": 1.0}]
     d["steady"]["method"] = "shooting"
     with pytest.raises(ModelError, match="hb"):
-        run_forced(d)
+        forced(d)
     d = copy.deepcopy(BASE)
     d["impact"] = [{"name": "stop", "body": "m", "stop": -1.0, "restitution": 0.8}]
     with pytest.raises(ModelError, match="shooting"):
-        run_forced(d)
+        forced(d)
 
 
-def test_is_nonlinear_forced():
-    assert is_nonlinear_forced(BASE) and not is_nonlinear_forced({"body": []})
+def test_steady_table_makes_forced_nonlinear():
+    assert Study.parse(BASE).is_steady()
+    assert not Study.parse({"body": [{"name": "m", "inertia": 1.0}]}).is_steady()

@@ -2,7 +2,11 @@
 import numpy as np
 import pytest
 
-from discrete.steady import HBModel, SteadyModel, estimates, run_forced, write_csv, plot_afc
+from discrete.steady import HBModel, estimates
+from fem.output import columns
+from fem.output.figures import plot_afc
+from fem.study import forced
+from fem.study import steady_model
 from discrete.steady.continuation import newton_fixed
 from discrete.errors import SolverError
 
@@ -18,7 +22,7 @@ def duffing(H=1, omega=(0.5, 2.2), **kw):
 def test_hb_linear_equals_frf():
     d = duffing(H=3)
     d["cubic_spring"][0]["k3"] = 0.0
-    sm = SteadyModel(d)
+    sm = steady_model(d)
     hb = HBModel(sm.system, harmonics=3)
     for w in (0.5, 1.0, 1.7):
         X, _ = hb.solve(np.zeros(hb.nq) + 1e-3, w)
@@ -44,7 +48,7 @@ def _folds_817():
 
 
 def test_continuation_folds_match_817_and_stability():
-    r = run_forced(duffing(H=1))
+    r = forced(duffing(H=1))
     wl, wr = _folds_817()
     f = sorted(x["omega"] for x in r.folds)
     assert len(f) == 2
@@ -55,12 +59,12 @@ def test_continuation_folds_match_817_and_stability():
 
 
 def test_stall_keeps_partial_result():
-    r = run_forced(duffing(H=1, ds=1e-3, ds_min=0.5))
+    r = forced(duffing(H=1, ds=1e-3, ds_min=0.5))
     assert "stalled" in r.reason and r.omega.size == 1
 
 
 def test_max_steps_reported():
-    r = run_forced(duffing(H=1, max_steps=5))
+    r = forced(duffing(H=1, max_steps=5))
     assert "max_steps" in r.reason and r.omega.size == 6
 
 
@@ -72,10 +76,10 @@ def test_newton_cannot_start():
 
 
 def test_outputs(tmp_path):
-    r = run_forced(duffing(H=1, omega=(0.8, 1.0)))
+    r = forced(duffing(H=1, omega=(0.8, 1.0)))
     d = r.to_dict()
     assert d["omega_rad_s"][0] == pytest.approx(0.8) and len(d["response"]) == r.omega.size
-    write_csv(r, tmp_path / "a.csv")
+    columns.write(tmp_path / "a.csv", columns.afc(r))
     rows = (tmp_path / "a.csv").read_text().splitlines()
     assert len(rows) == r.omega.size + 1
     plot_afc(r, tmp_path / "a.png")

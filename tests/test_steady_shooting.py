@@ -2,7 +2,8 @@
 import numpy as np
 from scipy.linalg import expm
 
-from discrete.steady import HBModel, ShootingModel, SteadyModel, floquet_hb
+from discrete.steady import HBModel, ShootingModel, floquet_hb
+from fem.study import steady_model
 from validation.analytic.steady_refs import den_hartog_amplitude, den_hartog_bvp
 
 
@@ -22,7 +23,7 @@ def sdof(c=0.0, friction=0.0, F=1.0, gap=None):
 
 def test_monodromy_linear_equals_expm():
     c, w = 0.2, 1.3
-    sm = SteadyModel(sdof(c=c))
+    sm = steady_model(sdof(c=c))
     sh = ShootingModel(sm.factory)
     y, _ = sh.solve(np.zeros(2), w, np.ones(2))
     mu = np.sort_complex(sh.floquet(y, w, np.ones(2)))
@@ -37,7 +38,7 @@ def test_monodromy_linear_equals_expm():
 def test_monodromy_coulomb_includes_saltation():
     """Coulomb oscillator: Phi = e^{A(T-t2)} S2 e^{A(t2-t1)} S1 e^{A t1}, S = diag(1, a+/a-) at a reversal."""
     P, w = 0.3, 0.8
-    sm = SteadyModel(sdof(friction=P))
+    sm = steady_model(sdof(friction=P))
     sh = ShootingModel(sm.factory)
     A0 = den_hartog_amplitude(1, 1, P, 1, w)
     sc = np.array([A0, A0 * w])
@@ -74,7 +75,7 @@ def test_den_hartog_formula_vs_bvp():
 def test_hb_floquet_vs_shooting_gap():
     d = sdof(c=0.1, F=0.3, gap=0.1)
     d["steady"]["method"] = "hb"
-    sm = SteadyModel(d)
+    sm = steady_model(d)
     w = 0.8
     hb = HBModel(sm.system, harmonics=25)
     sh = ShootingModel(sm.factory)
@@ -88,10 +89,10 @@ def test_hb_floquet_vs_shooting_gap():
 
 
 def test_shooting_continuation_tracks_den_hartog():
-    from discrete.steady import run_forced
+    from fem.study import forced
     d = sdof(friction=0.3)
     d["steady"].update(omega=[1.3, 1.6], ds=0.1)
-    r = run_forced(d)
+    r = forced(d)
     assert r.omega.size >= 3 and r.reason.startswith("reached")
     ref = np.array([den_hartog_amplitude(1, 1, 0.3, 1, w) for w in r.omega])
     assert np.max(np.abs(r.response - ref) / ref) < 1e-9
@@ -106,7 +107,7 @@ def test_settle_from_rest_with_quadratic_friction():
     and the settled state is a fixed point of the exact period map."""
     from validation.analytic.steady_seed002 import K_NAT, seed002_doc
 
-    sm = SteadyModel(seed002_doc(8.6e-4, "combined"))
+    sm = steady_model(seed002_doc(8.6e-4, "combined"))
     sh = ShootingModel(sm.factory)
     w = 0.69 * K_NAT
     rest, nudged = sh.map(np.zeros(2), w), sh.map(np.array([0.0, 1e-9]), w)

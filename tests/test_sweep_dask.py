@@ -5,7 +5,7 @@ import pytest
 
 pytest.importorskip("distributed")
 
-from fem.sweep import parse_sweep, run_sweep
+from fem.app.sweep import parse_sweep, run_sweep
 from discrete.errors import ModelError
 
 MODEL = """
@@ -69,13 +69,30 @@ def test_parallel_equals_serial_and_resume(tmp_path, capsys):
     assert load(tmp_path / "r.json") == d
 
 
-def test_failed_point_is_reported_and_sweep_goes_on(tmp_path, capsys):
+def test_bad_point_value_is_refused_before_anything_runs(tmp_path):
     p = write(tmp_path, 'points = [ { "spring.0.k" = 1.0 }, { "spring.0.k" = -5.0 }, { "spring.0.k" = 2.0 } ]')
+    with pytest.raises(ModelError, match=r"point \{'spring.0.k': -5.0\}.*k = -5.0.*>= 0"):
+        run_sweep(p, out=tmp_path / "f", workers=0, progress=False)
+    assert not (tmp_path / "f").exists()
+
+
+def test_failed_point_is_reported_and_sweep_goes_on(tmp_path, capsys, monkeypatch):
+    import fem.app.sweep as sweep
+
+    real = sweep._steady_point
+
+    def fails_at_k2(study, periods):
+        if study.doc.spring[0].k == 2.0:
+            raise RuntimeError("solver diverged (injected)")
+        return real(study, periods)
+
+    monkeypatch.setattr(sweep, "_steady_point", fails_at_k2)
+    p = write(tmp_path, 'points = [ { "spring.0.k" = 1.0 }, { "spring.0.k" = 2.0 }, { "spring.0.k" = 1.5 } ]')
     code = run_sweep(p, out=tmp_path / "f", workers=0, json_path=tmp_path / "f.json", progress=False)
     assert code == 1
     recs = load(tmp_path / "f.json")
     assert recs[0]["status"] == "ok" and recs[2]["status"] == "ok"
-    assert recs[1]["status"] == "error" and "k" in recs[1]["error"]
+    assert recs[1]["status"] == "error" and "injected" in recs[1]["error"]
     assert "point 1" in capsys.readouterr().err
 
 
@@ -87,18 +104,19 @@ def test_failed_point_is_reported_and_sweep_goes_on(tmp_path, capsys):
     ('grid = { "spring.0.kk" = [1.0] }', "kk"),
     ('analysis = "nope"\ngrid = { "spring.0.k" = [1.0] }', "analysis"),
 ])
-def test_bad_sweep_keys(tmp_path, capsys, line, word):
+def test_bad_sweep_keys(tmp_path, line, word):
     text = MODEL.replace('analysis = "steady"\n', "") if line.startswith("analysis") else MODEL
     p = tmp_path / "b.toml"
     p.write_text(text + line + "\n")
-    assert run_sweep(p, out=tmp_path / "b", workers=0, progress=False) == 2
-    assert word in capsys.readouterr().err
+    with pytest.raises(ModelError) as exc:
+        run_sweep(p, out=tmp_path / "b", workers=0, progress=False)
+    assert word in str(exc.value)
 
 
-def test_unreachable_scheduler(tmp_path, capsys):
+def test_unreachable_scheduler(tmp_path):
     p = write(tmp_path, 'grid = { "spring.0.k" = [1.0] }')
-    assert run_sweep(p, out=tmp_path / "u", scheduler="tcp://127.0.0.1:9", progress=False) == 2
-    assert "cannot reach the Dask scheduler" in capsys.readouterr().err
+    with pytest.raises(ModelError, match="--scheduler.*reachable Dask scheduler"):
+        run_sweep(p, out=tmp_path / "u", scheduler="tcp://127.0.0.1:9", progress=False)
 
 
 def test_existing_scheduler(tmp_path):
@@ -114,12 +132,15 @@ def test_existing_scheduler(tmp_path):
 
 
 def test_parse_grid_product_order():
-    doc = {"body": [{"name": "m"}], "force": [{"omega": 1.0, "amplitude": 1.0}],
-           "sweep": {"grid": {"force.0.amplitude": [1, 2], "force.0.omega": {"start": 1, "stop": 2, "points": 3}}}}
+    import tomllib
+
+    doc = tomllib.loads(MODEL + 'grid = { "force.0.amplitude" = [1, 2], "force.0.omega" = { start = 1, stop = 2, '
+                        'points = 3 } }\n')
     sp = parse_sweep(doc)
     assert len(sp["points"]) == 6 and sp["points"][1] == {"force.0.amplitude": 1, "force.0.omega": 1.5}
-    with pytest.raises(ModelError):
-        parse_sweep({"body": [], "sweep": {"grid": {"x.y": [1]}, "points": [{"a": 1}]}})
+    doc["sweep"]["points"] = [{"a": 1}]
+    with pytest.raises(ModelError, match="exactly one of grid"):
+        parse_sweep(doc)
 
 
 def test_simulate_and_forced_analyses(tmp_path):
@@ -138,13 +159,13 @@ def test_simulate_and_forced_analyses(tmp_path):
     assert r["peak_response"] > 0 and 0.5 <= r["peak_omega_rad_s"] <= 2.0
 
 
-def test_missing_dask_message(tmp_path, capsys, monkeypatch):
-    import fem.sweep.core as core
+def test_missing_dask_message(tmp_path, monkeypatch):
+    import fem.app.sweep as sweep
 
     def no_dask():
         raise ModelError("drivefem sweep", "dask", None, 'the dask.distributed package: pip install "dask[distributed]"')
 
-    monkeypatch.setattr(core, "_dask", no_dask)
+    monkeypatch.setattr(sweep, "_dask", no_dask)
     p = write(tmp_path, 'grid = { "spring.0.k" = [1.0] }')
-    assert run_sweep(p, out=tmp_path / "n", workers=2, progress=False) == 2
-    assert "pip install" in capsys.readouterr().err
+    with pytest.raises(ModelError, match="pip install"):
+        run_sweep(p, out=tmp_path / "n", workers=2, progress=False)

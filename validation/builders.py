@@ -11,7 +11,7 @@ def uniform(physics: str, length: float, elements: int, *, d: float = 0.05, supp
             material: Material = STEEL, section: Section | None = None, rho_extra: float = 0.0) -> ShaftModel:
     """A uniform circular shaft/beam; ``supports`` as (x, type) or (x, type, k, kr) tuples,
     ``points`` as PointAttachment or dicts."""
-    sec = section or Section.from_dict({"shape": "circle", "d": d}, "builder")
+    sec = section or Section.circle(d)
     sups = [Support(*s) for s in supports]
     pts = [p if isinstance(p, PointAttachment) else PointAttachment(**p) for p in points]
     return ShaftModel(physics=physics, segments=[Segment(length, elements, sec, material, rho_extra=rho_extra)],

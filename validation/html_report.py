@@ -82,7 +82,7 @@ def _summary(outcomes) -> dict:
 
 def write_html(outcomes: list[CaseOutcome], directory, figures: list[Path] | None = None) -> Path:
     """Write ``validation.html`` and ``validation.md`` into ``directory``; returns the HTML path."""
-    from fem.export import ensure_directory
+    from fem.output.mesh import ensure_directory
 
     directory = ensure_directory(directory, "validation report directory")
     figs = _collect_figures(figures, directory)
@@ -166,8 +166,8 @@ def make_figures(directory) -> list[Path]:
     and rendered mode shapes of a cantilever (skipped, with a note, when VTK cannot render).
     Written into ``directory/figures``; pass the list to :func:`write_html`."""
     from fem import assemble, modal_analysis
-    from fem.export import ensure_directory
-    from fem.plots_extra import plot_convergence, plot_solid_vs_beam
+    from fem.output.mesh import ensure_directory
+    from fem.output.figures import plot_convergence, plot_solid_vs_beam
     from fem.solid import ShaftMeshSpec, build_solid, solid_modal
     from validation.analytic.bending import euler_bernoulli_omegas, euler_bernoulli_roots
     from validation.builders import uniform

@@ -150,7 +150,10 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     rq = np.einsum("ij,ij->j", vec, Kv) / np.einsum("ij,ij->j", vec, Mv)
     Mv *= lam
     np.subtract(Kv, Mv, out=Kv)
-    residuals = np.sqrt(np.einsum("ij,ij->j", Kv, Kv)) / ((_norm1(K) + np.abs(lam) * _norm1(M)) * vnorm)
+    num = np.sqrt(np.einsum("ij,ij->j", Kv, Kv))
+    den = (_norm1(K) + np.abs(lam) * _norm1(M)) * vnorm
+    # a system without any stiffness (K = 0): its rigid-body modes solve K phi = 0 phi exactly
+    residuals = np.divide(num, den, out=np.where(num == 0, 0.0, np.inf), where=den > 0)
     if n_rigid is None:
         rigid = np.abs(lam) <= rigid_level
     else:

@@ -13,7 +13,7 @@ obeys ``z' = A z`` exactly, so a piece is propagated by ``expm(A tau)``.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -324,3 +324,28 @@ class Problem:
     def power(self, t, q, v, e, mode, F, sd):
         """Total non-conservative power (sum of :meth:`power_parts`)."""
         return sum(self.power_parts(t, q, v, e, mode, F, sd).values())
+
+
+@dataclass
+class ProblemSpec:
+    """Everything of a :class:`Problem` but the forcing frequency: a steady-state continuation
+    builds the problem at any frequency from it without rebuilding the model."""
+
+    system: LinearSystem
+    elements: list
+    drivers: dict = field(default_factory=dict)
+    forces: list = field(default_factory=list)
+    mass_rate: object = None
+    reactive: object = None
+    x0: np.ndarray | None = None
+    v0: np.ndarray | None = None
+    cubics: list = field(default_factory=list)     # smooth cubic springs (steady state only)
+
+    def problem(self, omega: float | None = None) -> Problem:
+        """The Problem, every harmonic driver and force at ``omega`` (None: as given)."""
+        drivers, forces = self.drivers, self.forces
+        if omega is not None:
+            drivers = {j: replace(d, omega=float(omega)) if d.amplitude != 0 else d for j, d in drivers.items()}
+            forces = [replace(f, omega=float(omega)) if f.amplitude != 0 else f for f in forces]
+        return Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
+                       mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)

@@ -9,48 +9,23 @@
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from discrete.errors import ModelError
-from discrete.schema import check_keys, choice, number
-from discrete.transfer import RegularDrive, forced_response, natural_frequencies
+from discrete.transfer import RegularDrive, forced_response, mode_shape, natural_frequencies
 from discrete.transfer.continuum import pseudo_medium_forced, stop_band
 
 from .continuum import build_continuum
 from .discrete import build_discrete
-from .model import DistributedShaft, DriveModel, parse_drive
+from .model import DistributedShaft, DriveModel
 from .seeding import continuum_estimates, continuum_roots, continuum_sorted, seedable
 from .tm import build_chain
 
-ANALYSIS_KEYS = {"type", "modes", "omega_rad_s", "frequencies_hz", "sweep_hz", "convergence_n"}
-DAMPING_KEYS = {"type", "psi"}
 
 
 # ------------------------------------------------------------------ helpers
-def _analysis(doc: dict) -> dict:
-    an = doc.get("analysis", {})
-    check_keys(an, ANALYSIS_KEYS, "[analysis]")
-    if "type" in an:
-        choice(an["type"], "type", "[analysis]", ("modal", "forced"))
-    return an
-
-
-def _delta(doc: dict) -> tuple[float, str]:
-    d = doc.get("damping", {})
-    check_keys(d, DAMPING_KEYS, "[damping]")
-    kind = choice(d.get("type", "none"), "type", "[damping]", ("none", "hysteretic"))
-    psi = number(d.get("psi", 0.0), "psi", "[damping]", nonnegative=True)
-    if kind == "none":
-        if psi:
-            raise ModelError("[damping]", "psi", psi, "psi only with type = 'hysteretic'")
-        return 0.0, "undamped"
-    delta = psi / (4 * math.pi)
-    return delta, f"hysteretic psi = {psi:g} (c (1 + 2 i delta), delta = {delta:.6g}) on shaft and mechanism springs"
-
-
 def regular_of(model: DriveModel) -> RegularDrive | None:
     """The closed-form regular structure of a lumped-shaft drive (None for a distributed shaft)."""
     if isinstance(model.shaft, DistributedShaft):
@@ -58,14 +33,6 @@ def regular_of(model: DriveModel) -> RegularDrive | None:
     me = model.mechanism
     return RegularDrive(n=model.n, c0=model.shaft.c0, J0=model.shaft.J0, m=me.m, c=me.c, ratio=me.ratio,
                         boundary=model.boundary, output=me.output)
-
-
-def _default_modes(model: DriveModel, an: dict, n_modes):
-    if n_modes is None:
-        n_modes = an.get("modes", min(6, 2 * model.n))
-    if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
-        raise ModelError("[analysis]", "modes", n_modes, "an integer >= 1")
-    return int(n_modes)
 
 
 def _tm_scale(model: DriveModel) -> float:
@@ -114,15 +81,26 @@ class DriveModalResult:
     stop_band_rad_s: tuple | None = None
     residual_kind: str = ""
     warnings: list = field(default_factory=list)
+    modal: object = None               # the FE ModalResult (discrete and continuum representations)
+    shapes: dict | None = None         # {"dofs": labels, "modes": [[...], ...]} where available
+
+    RESIDUAL_LIMIT = 1e-6
 
     @property
     def frequencies_hz(self) -> np.ndarray:
         return self.omega_rad_s / (2 * np.pi)
 
     @property
+    def reliable(self) -> np.ndarray:
+        """Per mode: the FE modal checks (FE representations) or residual < 1e-6 (transfer matrices)."""
+        if self.modal is not None:
+            return self.modal.reliable | self.modal.rigid
+        return np.asarray(self.residuals) < self.RESIDUAL_LIMIT
+
+    @property
     def ok(self) -> bool:
         """All residuals below 1e-6 (for the CLI exit code)."""
-        return bool(np.all(np.asarray(self.residuals) < 1e-6))
+        return bool(np.all(np.asarray(self.residuals) < self.RESIDUAL_LIMIT))
 
     @property
     def rel_diff(self) -> np.ndarray | None:
@@ -179,7 +157,8 @@ def modal(model: DriveModel, n_modes: int, representation: str | None = None) ->
     if rep == "continuum":
         cd = build_continuum(model)
         res = modal_analysis(cd.system, n_modes)
-        omega, resid, ndof = res.omega_rad_s, res.residuals, res.n_dofs
+        omega, resid, ndof, fe_res = res.omega_rad_s, res.residuals, res.n_dofs, res
+        shapes = {"dofs": cd.system.labels(), "modes": res.shapes.T.tolist()}
         method = f"two-field pseudo-medium, P{model.continuum_order} x {model.continuum_elements} elements; {res.method}"
         kind, warn = "FE backward error ||K phi - lam M phi|| / ((||K|| + lam ||M||) ||phi||)", res.warnings
         if cd.params["rho"] > 0:
@@ -187,13 +166,15 @@ def modal(model: DriveModel, n_modes: int, representation: str | None = None) ->
     elif rep == "discrete":
         dd = build_discrete(model)
         res = fe_modes(model, dd.system, n_modes)
-        omega, resid, ndof = res.omega_rad_s, res.residuals, res.n_dofs
+        omega, resid, ndof, fe_res = res.omega_rad_s, res.residuals, res.n_dofs, res
+        shapes = {"dofs": dd.system.labels(), "modes": res.shapes.T.tolist()}
         kind, warn = "FE backward error ||K phi - lam M phi|| / ((||K|| + lam ||M||) ||phi||)", res.warnings
         method = res.method + ("" if reg else f"; shaft P{model.shaft.order}, {model.shaft.elements} el./segment")
     else:
         chain, _, _ = build_chain(model)
         roots = natural_frequencies(chain, n_modes, p_guess=_tm_scale(model))
-        omega, resid = roots.omega_rad_s, roots.newton_rel
+        omega, resid, fe_res = roots.omega_rad_s, roots.newton_rel, None
+        shapes = _tm_shapes(chain, omega)
         per = 1 if (model.mechanism.rigid or model.mechanism.output == "grounded") else 2
         ndof = per * model.n if reg is not None else 2 * (len(chain.elements) + 1)
         method = f"transfer matrices: Wittrick-Williams count bisection, normalised line sweep ({roots.evaluations} sweeps)"
@@ -212,15 +193,19 @@ def modal(model: DriveModel, n_modes: int, representation: str | None = None) ->
         ref_name = "transfer matrices with exact continuous shaft segments (FE discretisation error shown)"
     return DriveModalResult(omega_rad_s=np.asarray(omega), residuals=np.asarray(resid), n_dofs=int(ndof),
                             representation=rep, method=method, description=model.describe(), reference_omega=ref,
-                            reference=ref_name, stop_band_rad_s=sb, residual_kind=kind, warnings=list(warn))
+                            reference=ref_name, stop_band_rad_s=sb, residual_kind=kind, warnings=list(warn),
+                            modal=fe_res, shapes=shapes)
 
 
-def drive_modal(doc: dict, n_modes: int | None = None) -> DriveModalResult:
-    """Entry point of ``drivefem modal`` for a ``[drive]`` model file."""
-    model = parse_drive(doc)
-    an = _analysis(doc)
-    _delta(doc)
-    return modal(model, _default_modes(model, an, n_modes))
+def _tm_shapes(chain, omega) -> dict:
+    """Section amplitudes of every transfer-matrix mode, normalised to the largest magnitude."""
+    modes = []
+    for w in omega:
+        a = np.real(mode_shape(chain, float(w)).a).ravel()
+        peak = np.max(np.abs(a)) if a.size else 0.0
+        modes.append((a / peak if peak > 0 else a).tolist())
+    n = len(modes[0]) if modes else 0
+    return {"dofs": [f"section {i}" for i in range(n)], "modes": modes}
 
 
 # ------------------------------------------------------------------ forced
@@ -342,17 +327,6 @@ def forced(model: DriveModel, omegas, representation: str | None = None, delta: 
     return DriveForcedResult(omega_rad_s=omegas, x_stations=xs, theta=theta, y=y, representation=rep, method=method,
                              damping=damping_name, description=model.describe(), force=model.force,
                              reference_theta=ref, reference=ref_name)
-
-
-def drive_forced(doc: dict) -> DriveForcedResult:
-    """Entry point of ``drivefem forced`` for a ``[drive]`` model file: frequencies from
-    ``[analysis]`` (omega_rad_s, frequencies_hz or sweep_hz), force from ``[drive.load]``."""
-    from fem.modelfile import _frequencies
-
-    model = parse_drive(doc)
-    an = _analysis(doc)
-    delta, name = _delta(doc)
-    return forced(model, _frequencies(an), delta=delta, damping_name=name)
 
 
 # ------------------------------------------------------------------ comparison
@@ -477,22 +451,6 @@ def compare_model(model: DriveModel, *, R: int = 3, convergence_n=None) -> Drive
     return DriveComparison(description=model.describe(), R=R, rows=rows, convergence_n=ns,
                            convergence_lower=np.array(lows), convergence_upper=np.array(highs),
                            continuum_lower=c_lo[:1], continuum_upper=c_hi[:1], convergence_source=src)
-
-
-def compare(doc: dict) -> DriveComparison:
-    """Entry point: the drive of ``doc`` by the three representations (plus the closed forms)
-    and the convergence of its discrete model to the pseudo-medium as n grows
-    (``[analysis] convergence_n = [..]``, default n, 2n, .., 16n)."""
-    model = parse_drive(doc)
-    an = _analysis(doc)
-    _delta(doc)
-    conv = an.get("convergence_n")
-    if conv is not None:
-        if not isinstance(conv, list) or not conv or any(isinstance(v, bool) or not isinstance(v, int) or v < 1 for v in conv):
-            raise ModelError("[analysis]", "convergence_n", conv, "a non-empty list of integers >= 1")
-        if model.boundary == "free-free" and min(conv) < 2:
-            raise ModelError("[analysis]", "convergence_n", conv, "integers >= 2 for a free-free drive")
-    return compare_model(model, convergence_n=conv)
 
 
 # ------------------------------------------------------------------ spectrum vs n

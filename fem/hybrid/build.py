@@ -23,6 +23,7 @@ import scipy.sparse.linalg as spla
 from discrete.errors import ModelError
 from discrete.linear_system import LinearSystem
 from discrete.nonsmooth import ExternalForce, MotionLaw, Problem
+from discrete.nonsmooth.problem import ProblemSpec
 
 from ..assembly import FEModel
 from discrete.linear.reduction import ReducedModel, reduce
@@ -93,6 +94,7 @@ class HybridModel:
     bodies: list[Body] = field(default_factory=list)
     springs: list[Spring] = field(default_factory=list)
     elements: list[ElementSpec] = field(default_factory=list)
+    cubics: list[ElementSpec] = field(default_factory=list)   # smooth cubic springs (steady states)
     forces: list[ForceSpec] = field(default_factory=list)
     drivers: list[DriverSpec] = field(default_factory=list)
     reduction: ReductionSpec | None = None
@@ -120,6 +122,7 @@ class CompiledHybrid:
     x0: np.ndarray
     v0: np.ndarray
     coupling: np.ndarray = None
+    cubics: list = field(default_factory=list)
     _problem: Problem | None = None
 
     @property
@@ -129,6 +132,11 @@ class CompiledHybrid:
             self._problem = Problem(self.system, self.elements, drivers=self.drivers, forces=self.forces,
                                     x0=self.x0, v0=self.v0)
         return self._problem
+
+    def spec(self) -> ProblemSpec:
+        """The problem without its forcing frequency fixed (time integrators, steady states)."""
+        return ProblemSpec(system=self.system, elements=self.elements, drivers=self.drivers, forces=self.forces,
+                           x0=self.x0, v0=self.v0, cubics=self.cubics)
 
     def field(self, x: np.ndarray) -> np.ndarray:
         """Full FE DOF vectors from system states: x is (n_dofs_system, n_times) -> (n_times, n_fe_full)."""
@@ -188,7 +196,7 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
         return ("fe", fe_dof(fe, ref, where))
 
     el_terms = []
-    for i, es in enumerate(model.elements, 1):
+    for i, es in enumerate(model.elements + model.cubics, 1):
         where = f"[[{getattr(es.cls, 'kind', 'element')}]] {es.kwargs.get('name', i)!r}"
         terms = [(resolve(r, where), ratio) for r, ratio in es.terms]
         if all(kind == "fe" and j in held for (kind, j), _ in terms):
@@ -274,10 +282,8 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     nm = np.concatenate([np.asarray(dof_name, dtype=object), np.array(names, dtype=object)])
     full_sys = LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), C=sp.csr_matrix(C), dof_field=fields, dof_x=xs,
                             dof_name=nm, constrained=red_constrained, title=model.title, physics=system.physics)
-    elements = []
-    for es, terms in zip(model.elements, el_terms):
-        kw = dict(es.kwargs)
-        elements.append(es.cls(g=gvec(terms), **kw))
+    elements = [es.cls(g=gvec(terms), **es.kwargs) for es, terms in zip(model.elements + model.cubics, el_terms)]
+    elements, cubics = elements[:len(model.elements)], elements[len(model.elements):]
     forces = [ExternalForce(g=gvec([(ft, 1.0)]), value=fs.value, amplitude=fs.amplitude, omega=fs.omega, phase=fs.phase)
               for fs, ft in zip(model.forces, f_terms)]
     drivers = {idx_map[jf]: law for jf, law in drv_full.items()}
@@ -306,7 +312,7 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
         x0[nr + k], v0[nr + k] = b.x0, b.v0
     return CompiledHybrid(system=full_sys, T=T, n_fe=nr, reduced=reduced, restitution_report=report,
                           warnings=warn, elements=elements, drivers=drivers, forces=forces, x0=x0, v0=v0,
-                          coupling=coupling)
+                          coupling=coupling, cubics=cubics)
 
 
 def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list) -> tuple[np.ndarray, np.ndarray]:

@@ -6,13 +6,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from discrete.nonsmooth import Options, simulate
-
-from discrete.timestepping import StepOptions, simulate_timestepping
+from discrete.nonsmooth.methods import simulate_spec
 
 from ..assembly import FEModel
 from .build import CompiledHybrid, HybridModel, compile_hybrid
-from .modelfile import parse_hybrid
 
 
 @dataclass
@@ -139,25 +136,17 @@ def _samples(t: np.ndarray, n: int) -> np.ndarray:
     return np.unique(idx)
 
 
-def run(model: HybridModel, settings: dict) -> HybridResult:
-    """Compile and integrate ``model`` with the settings of ``[simulation]``."""
+def run(model: HybridModel, settings: dict, compiled: CompiledHybrid | None = None) -> HybridResult:
+    """Compile (unless ``compiled`` is given) and integrate ``model`` with the settings of ``[simulation]``."""
     t0 = time.perf_counter()
-    comp = compile_hybrid(model)
+    comp = compiled or compile_hybrid(model)
     warn = list(comp.warnings)
     method = settings.get("method", "event")
-    if method == "moreau":
-        opts = StepOptions(dt=settings["dt"], theta=settings.get("theta", 0.5), tol=settings.get("tol", 1e-10),
-                           max_iter=settings.get("max_iter", 2000), max_events=settings.get("max_events", 100_000))
-        n_steps = int(np.ceil(settings["t_end"] / opts.dt))
-        opts.sample_every = max(1, n_steps // settings.get("samples", 2000))
-        if comp.reduced is not None and opts.dt > comp.reduced.suggested_time_step:
-            warn.append(f"dt = {opts.dt:g} s exceeds the reduction's suggested time step "
-                        f"{comp.reduced.suggested_time_step:.3g} s (1/20 of the shortest retained period)")
-        res = simulate_timestepping(comp.system, comp.elements, drivers=comp.drivers, forces=comp.forces,
-                                    x0=comp.x0, v0=comp.v0, t_end=settings["t_end"], options=opts)
-    else:
-        kw = {k: settings[k] for k in ("max_events", "max_step", "steps_per_period", "rest_tol", "energy") if k in settings}
-        res = simulate(comp.problem, settings["t_end"], Options(**kw))
+    if method == "moreau" and comp.reduced is not None and settings["dt"] > comp.reduced.suggested_time_step:
+        warn.append(f"dt = {settings['dt']:g} s exceeds the reduction's suggested time step "
+                    f"{comp.reduced.suggested_time_step:.3g} s (1/20 of the shortest retained period)")
+    res = simulate_spec(comp.spec(), settings["t_end"], method, settings,
+                        problem=comp.problem if method != "moreau" else None)
     warn += [w for w in res.warnings if w not in warn]
     if res.stopped_early:
         warn.append(f"stopped early: {res.reason}")
@@ -166,9 +155,3 @@ def run(model: HybridModel, settings: dict) -> HybridResult:
     return HybridResult(t=res.t[idx], field_history=fld, fe=model.fe, solver=res, compiled=comp,
                         reduction=comp.restitution_report, warnings=warn, method=method,
                         wall_time=time.perf_counter() - t0)
-
-
-def run_model_file(doc: dict) -> HybridResult:
-    """Parse and simulate a hybrid model file (a dict from TOML); see docs/hybrid.md."""
-    model, settings = parse_hybrid(doc)
-    return run(model, settings)

@@ -1,5 +1,5 @@
 """What ``drivefem render MODEL.toml --modes N --out DIR [--gif]`` does, as a function the
-CLI calls: modal analysis, data files (VTU of the mode shapes, CSV/JSON frequency table)
+command calls: modal analysis, data files (VTU of the mode shapes, CSV/JSON frequency table)
 and then the images.  Rendering problems never cost the data files."""
 from __future__ import annotations
 
@@ -21,24 +21,23 @@ class RenderReport:
                 "rendered": self.rendered, "message": self.message}
 
 
-def render_model_file(model, out_dir, n_modes: int | None = None, gif: bool = False,
-                      modes: list[int] | None = None) -> RenderReport:
-    """Run the modal analysis of an FE model file and write ``modes.vtu``, ``modes.csv``,
-    ``modes.json`` and the PNG/GIF files into ``out_dir``.  ``report.rendered`` is False
-    (with ``report.message`` naming the missing library) if VTK cannot render here."""
-    from ..export import ensure_directory, write_modal_table, write_modes
-    from discrete.linear.modal import modal_analysis
-    from ..modelfile import ModelFile, load_model_file
+def render_study(study, out_dir, n_modes: int | None = None, gif: bool = False,
+                 modes: list[int] | None = None) -> RenderReport:
+    """Run the modal analysis of an FE model file (a :class:`fem.study.Study`) and write
+    ``modes.vtu``, ``modes.csv``, ``modes.json`` and the PNG/GIF files into ``out_dir``.
+    ``report.rendered`` is False (with ``report.message`` naming the missing library) if VTK
+    cannot render here."""
+    from ..output.mesh import ensure_directory, write_modes
+    from ..output.tablefile import write_modal_table
     from .backend import RenderUnavailable
     from .images import mode_indices, render_modes
 
-    mf = model if isinstance(model, ModelFile) else load_model_file(model)
-    if mf.kind != "fe":
-        raise ModelError("drivefem render", "model", str(mf.path), "an FE model file (with [[segment]] tables)")
+    if study.kind != "fe":
+        raise ModelError("drivefem render", "model", str(study.path), "an FE model file (with [[segment]] tables; "
+                         f"this is a {study.kind} model)")
     out = ensure_directory(out_dir, "render output directory")
-    n = n_modes if n_modes is not None else int(mf.analysis.get("modes", 6))
-    fe = mf.fe_model()
-    res = modal_analysis(fe.system, n)
+    res = study.modal(n_modes)
+    fe = study.fe_model
     mode_indices(res, modes)            # a bad mode number is an error before anything is written
     rep = RenderReport()
     rep.data_files.append(write_modes(fe, res, out / "modes.vtu"))

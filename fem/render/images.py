@@ -140,7 +140,7 @@ def render_modes(fe, modal, out_dir, modes=None, gif: bool = False, kinds=None, 
     ``modes``: 1-based mode numbers (default: all computed); ``kinds``: optional labels per
     mode for the titles (3D models use their own classification by default).
     Raises :class:`fem.render.RenderUnavailable` if VTK cannot render here."""
-    from ..export import ensure_directory
+    from ..output.mesh import ensure_directory
 
     idx = mode_indices(modal, modes)
     out = ensure_directory(out_dir, "render output directory")

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.analytic import friction_ch8 as ref
 from validation.registry import case, check, claim
 
@@ -30,7 +30,7 @@ def coulomb_decay():
                "spring": [{"between": ["ground", "mass"], "k": c}],
                "friction": [{"name": "dry", "body": "mass", "kinetic": P, "static": Fs}],
                "simulation": {"t_end": (len(ext) + 2) * math.pi / k}}
-        res = run_model_file(doc)
+        res = simulate(doc)
         turns = [e for e in res.events if e.kind in ("reversal", "stick")]
         xs = np.array([e.state["mass"]["x"] for e in turns])
         ts = np.array([e.t for e in turns])

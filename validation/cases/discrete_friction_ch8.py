@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.analytic import friction_ch8 as ref
 from validation.registry import case, check, claim
 
@@ -56,7 +56,7 @@ def relaxation_undamped():
     k = math.sqrt(c / m)
     for v0 in (0.001, 0.005, 0.01, 0.05):
         r = ref.stick_slip_period(k, c, dF, v0)
-        res = run_model_file(drive(m, c, v0, F1, F1 + dF, t_end=(F1 + dF) / (c * v0) + 4.5 * r["period"]))
+        res = simulate(drive(m, c, v0, F1, F1 + dF, t_end=(F1 + dF) / (c * v0) + 4.5 * r["period"]))
         slips, sticks = res.event_times("slip"), res.event_times("stick")
         T = slips[-1] - slips[-2]
         st = sticks[(sticks > slips[-2])][0]
@@ -75,7 +75,7 @@ def relaxation_undamped():
 
 def _sticks_again(v0, m, c, b, F0, F1):
     tb = max(F0 - b * v0, 0.0) / (c * v0)
-    res = run_model_file(drive(m, c, v0, F1, F0, b=b, t_end=tb + 3 * 2 * math.pi / math.sqrt(c / m)))
+    res = simulate(drive(m, c, v0, F1, F0, b=b, t_end=tb + 3 * 2 * math.pi / math.sqrt(c / m)))
     slips = res.event_times("slip")
     return res.event_times("stick")[res.event_times("stick") > slips[0]].size > 0 if slips.size else True
 
@@ -114,7 +114,7 @@ def critical_speed():
         else:
             z = mid
     vsim = 0.5 * (a + z)
-    near = run_model_file(drive(m, c, vsim * (1 - 1e-6), F1, F0, b=b, t_end=1.0))
+    near = simulate(drive(m, c, vsim * (1 - 1e-6), F1, F0, b=b, t_end=1.0))
     return [
         check("ch8 period at the critical speed vs (8.46)", SRC + " (8.46)", "tau* (s)", book["tau"],
               near.period or float("nan"), 2e-3),
@@ -150,7 +150,7 @@ def quasi_harmonic():
                "damper": [{"between": ["link", "body"], "c": b}],
                "friction": [{"name": "f", "body": "body", "kinetic": a0, "viscous": a1, "quadratic": a2, "cubic": a3}],
                "simulation": {"t_end": 160.0, "max_step": 0.25}}
-        res = run_model_file(doc)
+        res = simulate(doc)
         q, qd = res.x[0] - res.x[1], res.v[0] - res.v[1]
         sel = res.t > res.t[-1] - 30.0
         ext = extrema(res.t[sel], q[sel], qd[sel])

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.analytic import gap as ref
 from validation.registry import case, check, claim
 
@@ -51,7 +51,7 @@ def gap_exact():
                  ref.frequency_ratio(0.1), 1e-6)]
     for lower, upper, A in ((-0.1, 0.1, 1.0), (-0.3, 0.3, 1.0), (-0.05, 0.15, 1.0)):
         T = ref.period(1.0, A, lower, upper)
-        res = run_model_file(model(lower, upper, A, periods=4.2))
+        res = simulate(model(lower, upper, A, periods=4.2))
         tag = f"[{lower}, {upper}], A={A}"
         closes = res.event_times("contact_close")
         out.append(check(f"gap period ({tag})", SRC + " (11.1)", "period (s)", T, closes[-1] - closes[-3], 1e-10))
@@ -77,7 +77,7 @@ def gap_arctan():
     errs, Ls = [], (10.0, 100.0, 1000.0)
     n_events = 0
     for L in Ls:
-        res = run_model_file(model(-d, d, A, law="arctan", L=L, periods=2.3, max_step=0.05))
+        res = simulate(model(-d, d, A, law="arctan", L=L, periods=2.3, max_step=0.05))
         tc = up_crossings(res.t, res.x[0], res.v[0])
         errs.append((tc[-1] - tc[-2]) / T - 1.0)
         n_events += len(res.events)

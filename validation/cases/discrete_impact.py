@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.registry import case, check, claim
 
 SRC = "bouncing ball, Newton restitution (closed form)"
@@ -32,7 +32,7 @@ def bouncing_ball():
                "impact": [{"name": "floor", "body": "ball", "restitution": e}],
                "constants": {"g": g},
                "simulation": {"t_end": t_end, "rest_tol": 1e-9}}
-        res = run_model_file(doc)
+        res = simulate(doc)
         t1 = math.sqrt(2 * h / g)
         v1 = g * t1
         ref_t = t1 + np.concatenate([[0.0], np.cumsum([2 * e ** n * v1 / g for n in range(1, 8)])])

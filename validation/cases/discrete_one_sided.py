@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.registry import case, check, claim
 
 SRC = "seed 002 (Khromov et al. 2012) (1)-(2), Fig. 2"
@@ -50,7 +50,7 @@ def strand():
     a = 1e-4
     H = linear_steady(a, w1)
     T = 2 * math.pi / w1
-    res = run_model_file(model(a, w1, 6 * T, phi0=H.imag, dphi0=(H * 1j * w1).imag))
+    res = simulate(model(a, w1, 6 * T, phi0=H.imag, dphi0=(H * 1j * w1).imag))
     phi = res.x[res.names.index("spool")]
     ref = np.imag(H * np.exp(1j * w1 * res.t))
     err = np.max(np.abs(phi - ref)) / abs(H)
@@ -61,7 +61,7 @@ def strand():
                      "no contact events and min tension > 0", len(res.events) == 0 and tension_min > 0,
                      note=f"min tension {tension_min:.3g} N"))
     a2, z = 4.7e-4, 0.755
-    res2 = run_model_file(model(a2, z * K_NAT, 25 * T))
+    res2 = simulate(model(a2, z * K_NAT, 25 * T))
     phi2 = res2.x[res2.names.index("spool")]
     cam2 = res2.x[res2.names.index("cam")]
     s = R * phi2 - cam2

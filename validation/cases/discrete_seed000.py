@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.analytic import seed000 as ref
 from validation.registry import case, check, claim
 
@@ -55,7 +55,7 @@ def seed000_stick_slip():
         tag = f"eps={eps:g}, Omega={Om:g}"
         out.append(check(f"seed000 closed form vs recurrence ({tag})", SRC + " vs (6)-(10)", "period (s)",
                          (ts_rec + tst_rec) * s, d["period"], 1e-12))
-        res = run_model_file(model(eps, Om))
+        res = simulate(model(eps, Om))
         m = measure(res)
         out.append(check(f"seed000 period ({tag})", SRC + " (20)", "period (s)", d["period"], m["period"], 1e-8))
         out.append(check(f"seed000 slip time ({tag})", SRC + " (17)", "slip time (s)", d["slip_time"], m["slip_time"], 1e-8))

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from discrete.nonsmooth import run_model_file
+from fem.study import simulate
 from validation.analytic import seed004 as S
 from validation.registry import case, check, claim
 
@@ -56,7 +56,7 @@ def seed004_tables():
     for key, rows in S.TABLES.items():
         fric, delta, mu, eps = key
         tab = S.TABLE_OF[(fric, delta)]
-        res = run_model_file(model(fric, delta, mu, eps))
+        res = simulate(model(fric, delta, mu, eps))
         amp = amplitudes(res) * 100.0
         g = G_TABLES if fric == "mass" else 9.8
         rec = np.abs(np.array(S.energy_recurrence(delta, mu, eps, len(rows), fric, g=g))) * 100.0

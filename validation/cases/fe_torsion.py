@@ -158,9 +158,9 @@ def torsion_stepped_shaft():
     from fem import Material, Section, Segment, ShaftModel, Support
 
     alu = Material(E=7.0e10, G=2.6e10, rho=2700.0)
-    segs = [Segment(0.4, 12, Section.from_dict({"shape": "circle", "d": 0.06}, "s1"), STEEL),
-            Segment(0.6, 12, Section.from_dict({"shape": "tube", "d": 0.08, "di": 0.05}, "s2"), STEEL),
-            Segment(0.3, 12, Section.from_dict({"shape": "circle", "d": 0.04}, "s3"), alu)]
+    segs = [Segment(0.4, 12, Section.circle(0.06), STEEL),
+            Segment(0.6, 12, Section.tube(0.08, 0.05), STEEL),
+            Segment(0.3, 12, Section.circle(0.04), alu)]
     model = ShaftModel("torsion", segs, supports=[Support(0.0)], order=2)
     res = modal_analysis(assemble(model).system, 4)
     data = [(s.length, s.material.G * s.section.J, s.material.rho * s.section.Ip) for s in segs]

@@ -10,6 +10,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from discrete.lumped import LumpedModel
+from fem.study import Study
 from fem import assemble, modal_analysis
 from discrete.linear.harmonic import Damping, harmonic_response
 from validation.analytic import sdof
@@ -26,7 +27,7 @@ def _sdof(delta: float, base: bool = False) -> LumpedModel:
            "damper": [{"between": ["base" if base else "ground", "m"], "c": 2 * delta * np.sqrt(C * M)}]}
     if base:
         doc["driver"] = [{"name": "base", "amplitude": 1.0, "omega": 1.0}]
-    return LumpedModel.from_dict(doc)
+    return Study.parse(doc).lumped
 
 
 @case("sdof-amplitude-phase", group="forced")
@@ -169,19 +170,19 @@ def energy_balance_hysteretic():
     out = []
     c, F0, psi = 1000.0, 10.0, 0.4
     doc = {"body": [{"name": "m", "inertia": 1.0}], "spring": [{"between": ["ground", "m"], "k": c, "psi": psi}]}
-    sys_ = LumpedModel.from_dict(doc).linear_system()
+    sys_ = Study.parse(doc).lumped.linear_system()
     res = harmonic_response(sys_, [np.sqrt(c)], force=np.array([F0 + 0j]), outputs=[0])
     eb = sdof.energy_balance_resonance_amplitude(F0, c, psi)
     out.append(check("energy-balance-hysteretic", "seed 001 §5.13, A = 2 pi F0/(psi c)", "SDOF resonance amplitude [m]",
                      eb, res.amplitude[0, 0], 1e-10))
     # the same through the global hysteretic damping option
-    sys0 = LumpedModel.from_dict({"body": doc["body"], "spring": [{"between": ["ground", "m"], "k": c}]}).linear_system()
+    sys0 = Study.parse({"body": doc["body"], "spring": [{"between": ["ground", "m"], "k": c}]}).lumped.linear_system()
     res0 = harmonic_response(sys0, [np.sqrt(c)], force=np.array([F0 + 0j]), outputs=[0], damping=Damping("hysteretic", psi=psi))
     out.append(check("energy-balance-hysteretic", "[damping] type = 'hysteretic'", "SDOF resonance amplitude [m]", eb,
                      res0.amplitude[0, 0], 1e-10))
     doc2 = {"body": [{"name": "m1", "inertia": 1.0}, {"name": "m2", "inertia": 1.0}],
             "spring": [{"between": ["ground", "m1"], "k": c, "psi": psi}, {"between": ["m1", "m2"], "k": c, "psi": psi}]}
-    sys2 = LumpedModel.from_dict(doc2).linear_system()
+    sys2 = Study.parse(doc2).lumped.linear_system()
     modes = modal_analysis(sys2, 2)
     digest = {0: ("0.183775", "0.113949"), 1: ("0.026885", "0.043447")}
     for r in range(2):

@@ -21,9 +21,9 @@ def _doc():
 
 def bar_metrics(doc: dict) -> dict:
     """Run the hybrid model ``doc`` and extract contact duration, force plateau and rebound velocity."""
-    from fem.hybrid import run_model_file
+    from fem.study import simulate
 
-    r = run_model_file(doc)
+    r = simulate(doc)
     s = r.solver
     t_hit = min(e.t for e in r.events if e.kind == "impact")
     opens = [e.t for e in r.events if e.kind == "contact_open" and e.t > t_hit]

@@ -25,9 +25,9 @@ def string_period(doc: dict, cycles: int = 3) -> dict:
     """Run ``doc`` and measure the stick-slip period as the mean breakaway-to-breakaway interval
     over the last ``cycles`` cycles (the string's undamped modes, excited at every event, make the
     cycles differ slightly; ``scatter`` is their max - min)."""
-    from fem.hybrid import run_model_file
+    from fem.study import simulate
 
-    r = run_model_file(doc)
+    r = simulate(doc)
     slips = np.array([e.t for e in r.events if e.kind == "slip"])
     per = np.diff(slips)[-cycles:]
     first = slips[-cycles - 1] if slips.size > cycles else 0.0
@@ -112,7 +112,7 @@ def realistic_table(lengths=(500.0, 1000.0, 2000.0, 3000.0)) -> list[dict]:
     """5" drill pipe (d 127 mm, di 108.6 mm, steel), BHA inertia 128 kg m^2, 60 rpm, M0 = 2 kN m,
     M1 = 2 M0, restick as seed 000: period of the FE string (Craig-Bampton, 6 modes, 30 P2
     elements) against the one-mass model (20) with c = GJ/L and with the Rayleigh inertia."""
-    from fem.hybrid import run_model_file
+    from fem.study import simulate
 
     G, rho, d, di = 79.3e9, 7850.0, 0.127, 0.1086
     J = math.pi / 32 * (d ** 4 - di ** 4)
@@ -129,7 +129,7 @@ def realistic_table(lengths=(500.0, 1000.0, 2000.0, 3000.0)) -> list[dict]:
                "point": [{"x": L, "inertia": I}], "driver": [{"x": 0.0, "velocity": om}],
                "friction": [{"name": "bit", "x": L, "kinetic": M0v, "static": eps * M0v, "restick": "kinetic"}],
                "reduction": {"modes": 6}, "simulation": {"t_end": 8 * one}}
-        r = run_model_file(doc)
+        r = simulate(doc)
         slips = np.array([e.t for e in r.events if e.kind == "slip"])
         per = float(np.mean(np.diff(slips)[-3:])) if slips.size > 3 else float("nan")
         rows.append({"L": L, "mu": mu, "one_mass": one, "rayleigh": ray, "continuum": per, "ratio": per / one,

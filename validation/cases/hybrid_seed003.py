@@ -75,10 +75,10 @@ def run_example(kind: str, beta: float, **kw) -> dict:
 
 
 def run_example_doc(ex: dict) -> dict:
-    from fem.hybrid import run_model_file
+    from fem.study import simulate
     from discrete.linear.modal import modal_analysis
 
-    r = run_model_file(ex["doc"])
+    r = simulate(ex["doc"])
     sys_ = r.fe.system
     phi = modal_analysis(sys_, 1).shapes[:, 0]
     j = sys_.dof_index(field=ex["dof"], x=ex["xj"])

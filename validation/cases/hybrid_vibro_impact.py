@@ -52,9 +52,9 @@ def peak_parabolic(t: np.ndarray, y: np.ndarray) -> float:
 def impact_metrics(doc: dict, periods: int = 3) -> dict:
     """Peak stop force and tip amplitude over the last ``periods`` forcing periods, the same over the
     periods before (steadiness), the contact-to-contact intervals, energy error, wall time."""
-    from fem.hybrid import run_model_file
+    from fem.study import simulate
 
-    r = run_model_file(doc)
+    r = simulate(doc)
     p = doc["force"][0]["omega"]
     T = 2 * math.pi / p
     s = r.solver

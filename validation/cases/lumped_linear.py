@@ -9,11 +9,11 @@ from __future__ import annotations
 import numpy as np
 
 from discrete.dunkerley import dunkerley_bound
-from discrete.lumped import LumpedModel
 from fem import Material, PointAttachment, Section, Segment, ShaftModel, Support, assemble, modal_analysis
 from validation.analytic import bending as eb
 from validation.analytic.lumped_refs import (geared_drive_314, geared_drive_314_driven, two_discs,
                                              two_mass_three_spring)
+from fem.study import Study
 from validation.registry import case, check, claim, printed
 
 
@@ -24,7 +24,7 @@ def _pr(text: str, computed: float):
 
 
 def _omegas(doc: dict, n: int):
-    return modal_analysis(LumpedModel.from_dict(doc).linear_system(), n)
+    return modal_analysis(Study.parse(doc).lumped.linear_system(), n)
 
 
 @case("lumped-two-mass-chain", group="lumped")

@@ -29,7 +29,7 @@ def export_roundtrip():
     frequencies travel as VTU field data / XDMF information and must match to 1e-12 too.
     Both encodings are exact for doubles, so the tolerance only guards against a lossy
     format sneaking in (single precision would give ~1e-7)."""
-    from fem.export import read_modes, write_modes
+    from fem.output.mesh import read_modes, write_modes
 
     out = []
     with tempfile.TemporaryDirectory() as tmp:

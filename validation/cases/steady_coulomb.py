@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.steady import HBModel, ShootingModel, SteadyModel, estimates
+from discrete.steady import HBModel, ShootingModel, estimates
+from fem.study import steady_model
 from validation.analytic.steady_refs import den_hartog_amplitude
 from validation.registry import case, check, claim
 
@@ -40,10 +41,10 @@ def coulomb():
     against shooting, tolerance 1e-3 (the estimate neglects the higher harmonics of the friction force).
     """
     out = []
-    sm = SteadyModel(doc())
+    sm = steady_model(doc())
     sh = ShootingModel(sm.factory)
-    hb1 = HBModel(SteadyModel(doc("hb", regularisation=1e-4)).system, harmonics=1, samples=4096)
-    hb15 = HBModel(SteadyModel(doc("hb", regularisation=1e-4)).system, harmonics=15, samples=4096)
+    hb1 = HBModel(steady_model(doc("hb", regularisation=1e-4)).system, harmonics=1, samples=4096)
+    hb15 = HBModel(steady_model(doc("hb", regularisation=1e-4)).system, harmonics=15, samples=4096)
     for w in OMEGAS:
         ref = den_hartog_amplitude(M, K, P, F0, w)
         y, _, _ = sh.settle(np.zeros(2), w, periods=60, tol=1e-6, scale=np.ones(2))
@@ -72,7 +73,7 @@ def coulomb():
         out.append(check(f"HB 15 harmonics r = {w}", SRC, "amplitude", ref, 0.5 * (q.max() - q.min()), 0.006))
     # energy balance at resonance with viscous damping
     c = 0.05
-    smc = SteadyModel(doc(c=c))
+    smc = steady_model(doc(c=c))
     shc = ShootingModel(smc.factory)
     y, _, _ = shc.settle(np.zeros(2), 1.0, periods=600, tol=1e-9, scale=np.ones(2))
     y, _ = shc.solve(y, 1.0, np.array([10.0, 10.0]))

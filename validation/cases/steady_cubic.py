@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.steady import HBModel, SteadyModel, backbone, estimates, run_forced
+from discrete.steady import HBModel, backbone, estimates
+from fem.study import forced, steady_model
 from validation.analytic.steady_refs import duffing_backbone_exact, duffing_rk4_sweep
 from validation.registry import case, check, claim, printed
 
@@ -43,7 +44,7 @@ def cubic_backbone():
         d["force"][0]["amplitude"] = 0.0
         d["force"][0]["omega"] = 1.0
         d["force"].append({"body": "mass", "amplitude": 1e-300, "omega": 1.0})
-        sm = SteadyModel(d)
+        sm = steady_model(d)
         w9, _ = backbone(HBModel(sm.system, harmonics=9), A, ex)
         out.append(check(f"HB backbone xi = {xi}, A = {A}", SRC, "omega (9 harmonics)", ex, w9, 1e-7))
         w1, _ = backbone(HBModel(sm.system, harmonics=1), A, ex)
@@ -67,20 +68,20 @@ def cubic_forced():
     (RK4 at 64 steps/period: ~1e-5; settling to 1e-9 over a period; the digest quotes <= 0.9 %).
     """
     out = []
-    r1 = run_forced(forced_doc(harmonics=1))
+    r1 = forced(forced_doc(harmonics=1))
     fw = sorted(f["omega"] for f in r1.folds)
     out.append(claim("two folds (one-harmonic HB)", SRC, "number of folds", len(fw) == 2, note=str(fw)))
     if len(fw) == 2:
         for name, val, txt in (("w_L", fw[0], "1.23243"), ("w_R", fw[1], "1.45384")):
             ref, tol = printed(txt)
             out.append(check(f"fold {name} (H = 1)", SRC, "omega", ref, val, tol + 1e-6))
-    sm = SteadyModel(forced_doc(harmonics=1))
+    sm = steady_model(forced_doc(harmonics=1))
     hb = HBModel(sm.system, harmonics=1)
     for w, txt in ((0.8, "0.5296"), (1.0, "0.8556"), (2.0, "0.0832")):
         X, _ = hb.solve(hb.linear_guess(w), w)
         ref, tol = printed(txt)
         out.append(check(f"(8.17) amplitude w = {w}", SRC, "A", ref, float(np.hypot(X[1], X[2])), tol))
-    r7 = run_forced(forced_doc(harmonics=7))
+    r7 = forced(forced_doc(harmonics=7))
     f7 = sorted(f["omega"] for f in r7.folds)
     # stability pattern: along the branch, points between the two folds are unstable
     i_r = int(np.argmax(r7.omega * (r7.response > 1.0)))  # right fold index (top of the upper branch)
@@ -101,7 +102,7 @@ def cubic_forced():
     out.append(claim("down-sweep jumps up across the left fold", SRC, "w_j - 0.01 <= w_L(H=7) < w_j",
                      bool(dn[jd + 1] <= f7[0] < dn[jd]), note=f"jump between {dn[jd]} and {dn[jd + 1]}, fold {f7[0]:.5f}"))
     # amplitudes: compare with the HB branch point nearest in (omega, amplitude)
-    hb7 = HBModel(SteadyModel(forced_doc(harmonics=7)).system, harmonics=7)
+    hb7 = HBModel(steady_model(forced_doc(harmonics=7)).system, harmonics=7)
     errs = []
     for ws, amps in ((up, a_up), (dn, a_dn)):
         for w, a in zip(ws[::5], amps[::5]):

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.steady import ShootingModel, SteadyModel, run_forced
+from discrete.steady import ShootingModel
+from fem.study import forced, steady_model
 from validation.registry import case, check, claim
 
 SRC = "textbook §11.1 (11.1) gap oscillator (discrete issue), forced; HB vs event-driven shooting"
@@ -29,8 +30,8 @@ def gap_case():
     HB marks those points stable; the shooting Floquet multipliers are inside the unit circle.
     """
     out = []
-    r = run_forced(gap_doc())
-    sm = SteadyModel(gap_doc())
+    r = forced(gap_doc())
+    sm = steady_model(gap_doc())
     sh = ShootingModel(sm.factory)
     errs, agree = [], True
     for j in range(0, r.omega.size, max(1, r.omega.size // 8)):

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from discrete.steady import HBModel, ShootingModel, SteadyModel, run_forced
+from discrete.steady import HBModel, ShootingModel
+from fem.study import forced, steady_model
 from validation.analytic.steady_seed002 import AMPLITUDES, F0, K_NAT, seed002_doc, linear_mu
 from validation.registry import case, check, claim
 
@@ -14,14 +15,14 @@ _CACHE: dict = {}
 def curves(friction: str, stability: bool):
     key = (friction, stability)
     if key not in _CACHE:
-        _CACHE[key] = {a: run_forced(seed002_doc(a, friction, z=(0.3, 2.0), stability=stability)) for a in AMPLITUDES}
+        _CACHE[key] = {a: forced(seed002_doc(a, friction, z=(0.3, 2.0), stability=stability)) for a in AMPLITUDES}
     return _CACHE[key]
 
 
 def min_tension(a, friction, r):
     """Smallest strand tension (N) over each HB point of curve r (signed: negative = would be slack,
     i.e. the strand did slacken; the tension itself is clipped at zero by the one-sided law)."""
-    sm = SteadyModel(seed002_doc(a, friction))
+    sm = steady_model(seed002_doc(a, friction))
     hb = HBModel(sm.system, harmonics=15)
     out = []
     el = sm.system.elements.index(next(e for e in sm.system.elements if e.name == "strand"))
@@ -64,7 +65,7 @@ def seed002_afc():
     S = {a: summary(simple[a]) for a in AMPLITUDES}
     C = {a: summary(comb[a]) for a in AMPLITUDES}
     # (i) linear regime
-    sm = SteadyModel(seed002_doc(1e-4, "simple"))
+    sm = steady_model(seed002_doc(1e-4, "simple"))
     hb = HBModel(sm.system, harmonics=15)
     w = 0.5 * K_NAT
     X, _ = hb.solve(hb.linear_guess(w), w)
@@ -77,7 +78,7 @@ def seed002_afc():
     for fr, law in (("simple", SIMPLE), ("combined", COMBINED)):
         A_eb = estimates.energy_balance_amplitude(C_STRAND * R * 1e-4, K_NAT, law.get("viscous", 0.0),
                                                   law.get("kinetic", 0.0), law.get("quadratic", 0.0))
-        smf = SteadyModel(seed002_doc(1e-4, fr, regularisation=1e-4))
+        smf = steady_model(seed002_doc(1e-4, fr, regularisation=1e-4))
         hbf = HBModel(smf.system, harmonics=15)
         Xf, _ = hbf.solve(hbf.linear_guess(K_NAT), K_NAT)
         _, qf, _ = hbf.evaluate(Xf, K_NAT, points=4096)
@@ -141,7 +142,7 @@ def seed002_afc():
 
 
 def _shoot_vs_hb(a, friction, r):
-    sm = SteadyModel(seed002_doc(a, friction))
+    sm = steady_model(seed002_doc(a, friction))
     hb = HBModel(sm.system, harmonics=15)
     i = int(np.argmax(r.response))
     w = float(r.omega[i])
@@ -156,7 +157,7 @@ def _shoot_vs_hb(a, friction, r):
 
 
 def _period2(a, z):
-    sm = SteadyModel(seed002_doc(a, "simple"))
+    sm = steady_model(seed002_doc(a, "simple"))
     w = z * K_NAT
     sh1 = ShootingModel(sm.factory)
     sh2 = ShootingModel(sm.factory, nu=2)
@@ -191,7 +192,7 @@ def seed002_time_sweeps():
     for a in (4.7e-4, 8.6e-4):
         r = curves("simple", True)[a]
         s = summary(r)
-        sm = SteadyModel(seed002_doc(a, "simple"))
+        sm = steady_model(seed002_doc(a, "simple"))
         hb = HBModel(sm.system, harmonics=15)
         sh = ShootingModel(sm.factory, steps_per_period=48)
         sc = np.array([0.01, 0.5])

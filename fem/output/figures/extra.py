@@ -19,7 +19,7 @@ import numpy as np  # noqa: E402
 
 
 def _save(fig, path) -> Path:
-    from .export import ensure_directory
+    from ..mesh import ensure_directory
 
     path = Path(path)
     ensure_directory(path.parent)
@@ -83,7 +83,7 @@ def plot_campbell(parameter, results, path, xlabel: str = "speed [rpm]", orders=
     return _save(fig, path)
 
 
-def plot_afc(result, path, log: bool = False, stable=None, title: str = "amplitude-frequency curve") -> Path:
+def plot_amplitude_curve(result, path, log: bool = False, stable=None, title: str = "amplitude-frequency curve") -> Path:
     """Amplitude-frequency curves of a harmonic result (each output), or of any object with
     ``frequencies_hz`` and ``amplitude`` (n_freq[, n_out]); ``stable`` (bool per point)
     draws unstable points dashed (continuation results)."""
@@ -140,7 +140,7 @@ def plot_phase_portrait(result, path, names=None, last_fraction: float = 1.0, ti
     return _save(fig, path)
 
 
-def plot_time_history(result, path, names=None, velocity: bool = True, title: str = "time history") -> Path:
+def plot_time_series(result, path, names=None, velocity: bool = True, title: str = "time history") -> Path:
     """x(t) (and v(t)) of the named DOFs of a simulation result, events as ticks."""
     names = list(names or list(result.names)[:4])
     t = np.asarray(result.t)

@@ -3,20 +3,22 @@ from __future__ import annotations
 
 import json
 import time
-import tomllib
 from pathlib import Path
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+from ..modelfile import load
+
+EXAMPLES = Path(__file__).resolve().parent.parent.parent / "examples"
 
 
-def _analysis_type(path: Path) -> str:
-    with open(path, "rb") as fh:
-        doc = tomllib.load(fh)
-    if "sweep" in doc:
-        return "sweep"
-    if "simulation" in doc:
-        return "simulate"
-    return doc.get("analysis", {}).get("type", "modal")
+def _command(path: Path) -> tuple[str, object]:
+    """The command that shows an example model (and its typed document)."""
+    doc = load(path)
+    if getattr(doc, "sweep", None) is not None:
+        return "sweep", doc
+    if getattr(doc, "simulation", None) is not None:
+        return "simulate", doc
+    an = doc.analysis
+    return (an.type if an is not None else "modal"), doc
 
 
 def run_demo(out: Path) -> int:
@@ -27,7 +29,7 @@ def run_demo(out: Path) -> int:
     examples = sorted(EXAMPLES.glob("*.toml"))
     print(f"drivefem demo: {len(examples)} example models from {EXAMPLES} -> {out.resolve()}\n")
     for path in examples:
-        kind = _analysis_type(path)
+        kind, doc = _command(path)
         stem = out / path.stem
         if kind == "sweep":  # minutes of work: shown, not run (see docs/steady.md)
             print(f"(skipped: drivefem sweep {path} --json {stem}.json  -- a {path.name} parameter map takes minutes)\n")
@@ -35,7 +37,8 @@ def run_demo(out: Path) -> int:
         t0 = time.perf_counter()
         argv = [kind, str(path), "--json", f"{stem}.json"]
         if kind == "modal":
-            argv += ["--plot", f"{stem}_modes.png", "--vtu", f"{stem}_modes.vtu"] if "[[segment]]" in path.read_text() else []
+            argv += ["--plot", f"{stem}_modes.png", "--vtu", f"{stem}_modes.vtu"] if hasattr(doc, "segment") \
+                and not hasattr(doc, "reduction") else []
         elif kind == "forced":
             argv += ["--csv", f"{stem}.csv", "--plot", f"{stem}_frf.png"]
         else:

@@ -27,18 +27,29 @@ def plot_mode_shapes(fe, modal, path: str | Path, n: int | None = None) -> Path:
     ax.legend(fontsize=8)
     fig.tight_layout()
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
+def _frf_arrays(result):
+    """(f, amplitude, lag, output names) of a harmonic or a drive forced response (n_freq x n_out)."""
+    if hasattr(result, "theta"):          # drive of regular structure: shaft stations and mechanism outputs
+        Z = np.concatenate([result.theta, result.y], axis=1)
+        n = result.theta.shape[1]
+        names = [f"theta{j + 1}" for j in range(n)] + [f"y{j + 1}" for j in range(n)]
+        return result.frequencies_hz, np.abs(Z), np.mod(-np.degrees(np.angle(Z)), 360.0), names
+    return result.frequencies_hz, result.amplitude, result.phase_lag_deg, list(result.outputs)
+
+
 def plot_frf(result, path: str | Path, title: str = "") -> Path:
-    """Amplitude (log) and phase lag of a harmonic response."""
+    """Amplitude (log) and phase lag of a harmonic response (at most 12 outputs drawn)."""
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    f = result.frequencies_hz
-    for j, name in enumerate(result.outputs):
-        a1.semilogy(f, np.maximum(result.amplitude[:, j], 1e-300), label=name)
-        a2.plot(f, result.phase_lag_deg[:, j], label=name)
+    f, amp, lag, names = _frf_arrays(result)
+    for j, name in enumerate(names[:12]):
+        a1.semilogy(f, np.maximum(amp[:, j], 1e-300), label=name)
+        a2.plot(f, lag[:, j], label=name)
     a1.set_ylabel("amplitude")
     a2.set_ylabel("phase lag [deg]")
     a2.set_xlabel("f [Hz]")
@@ -48,6 +59,7 @@ def plot_frf(result, path: str | Path, title: str = "") -> Path:
     a1.legend(fontsize=8)
     fig.tight_layout()
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path

@@ -1,7 +1,6 @@
 """Plots of drive results (they take computed results, never recompute them)."""
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -41,20 +40,3 @@ def plot_spectrum_vs_n(sweep, path, title: str | None = None):
     fig.savefig(path)
     plt.close(fig)
     return Path(path)
-
-
-def main(argv=None) -> int:
-    """python -m fem.drives.plots OUT.png : the docs figure (Set C discretised, n = 1..40)."""
-    from .analysis import spectrum_sweep
-    from .model import DriveModel, LumpedShaft, Mechanism
-
-    out = (argv or sys.argv[1:] or ["docs/img/drive_spectrum.png"])[0]
-    base = DriveModel(n=6, shaft=LumpedShaft(c0=6.0e4, J0=0.02 / 6),
-                      mechanism=Mechanism(m=10 / 6, c=10 / 6 * 300.0**2, ratio=0.05), continuum_length=2.0 / 6)
-    sweep = spectrum_sweep(base, range(1, 41))
-    print(plot_spectrum_vs_n(sweep, out, "Set C drive (clamped-free): lumped shaft + n mechanisms, k = 300 rad/s"))
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,5 +1,5 @@
 """Export of results to files: mode shapes and time histories to VTU/XDMF (meshio, for
-ParaView/pyvista), result tables to CSV/JSON.
+ParaView/pyvista) with meshio.
 
 1D models are written as polylines along the x axis (coordinates padded to 3D: y = z = 0)
 with one point-data array per mode and per field (``mode3_w``, ``mode3_w_x``, ...), plus a
@@ -14,7 +14,6 @@ write/read round trip returns the original arrays to the last bit or within 1e-1
 """
 from __future__ import annotations
 
-import csv
 import json
 import os
 import xml.etree.ElementTree as ET
@@ -256,60 +255,3 @@ def read_time_history(path: str | Path) -> dict:
     names = frames[0].keys() if frames else []
     return {"t": np.array(times), "points": np.asarray(points, float),
             "fields": {n: np.stack([np.asarray(f[n], float) for f in frames]) for n in names}}
-
-
-# ------------------------------------------------------------------- tables
-def write_columns(columns: dict[str, np.ndarray | list], path: str | Path) -> Path:
-    """Write equal-length columns as CSV (``.csv``: header row, full precision) or JSON
-    (``.json``: an object of lists)."""
-    path = Path(path)
-    _check_suffix(path, (".csv", ".json"), "table export")
-    cols = {k: np.asarray(v).ravel() for k, v in columns.items()}
-    lengths = {k: v.size for k, v in cols.items()}
-    if len(set(lengths.values())) > 1:
-        raise ModelError("table export", "columns", lengths, "columns of equal length")
-    ensure_directory(path.parent)
-    if path.suffix.lower() == ".json":
-        path.write_text(json.dumps({k: v.tolist() for k, v in cols.items()}, indent=2))
-        return path
-    n = next(iter(lengths.values()), 0)
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(list(cols))
-        for i in range(n):
-            w.writerow([repr(v.item()) if isinstance(v.item(), float) else v.item() for v in (c[i] for c in cols.values())])
-    return path
-
-
-def read_columns(path: str | Path) -> dict[str, np.ndarray]:
-    """Read a table written by :func:`write_columns` (numeric columns as float arrays)."""
-    path = Path(path)
-    if path.suffix.lower() == ".json":
-        return {k: np.asarray(v) for k, v in json.loads(path.read_text()).items()}
-    with open(path, newline="") as fh:
-        rows = list(csv.reader(fh))
-    head, body = rows[0], rows[1:]
-    out = {}
-    for j, name in enumerate(head):
-        col = [r[j] for r in body]
-        try:
-            out[name] = np.array([float(v) for v in col])
-        except ValueError:
-            out[name] = np.array(col, dtype=object)
-    return out
-
-
-def modal_table(modal) -> dict[str, np.ndarray]:
-    """Columns of a modal result: mode number, f [Hz], omega [rad/s], residual, reliable."""
-    n = modal.omega_rad_s.size
-    cols = {"mode": np.arange(1, n + 1), "f_hz": modal.frequencies_hz, "omega_rad_s": modal.omega_rad_s,
-            "residual": modal.residuals, "reliable": modal.reliable.astype(int)}
-    kinds = getattr(modal, "kinds", None)
-    if kinds is not None:
-        cols["kind"] = np.asarray(kinds, dtype=object)
-    return cols
-
-
-def write_modal_table(modal, path: str | Path) -> Path:
-    """The frequency table of ``modal`` as CSV or JSON."""
-    return write_columns(modal_table(modal), path)

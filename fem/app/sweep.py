@@ -1,5 +1,8 @@
 """``drivefem sweep``: parameter sweeps of a model file on Dask (see docs/steady.md, "Sweeps").
 
+The ``[sweep]`` table is declared in the model-file schema (:mod:`fem.modelfile.schema.steady`);
+every point is a model file of its own, validated up front before anything runs.
+
 The sweep is defined in the model file::
 
     [sweep]
@@ -34,43 +37,23 @@ import json
 import math
 import os
 import sys
-import tomllib
 from pathlib import Path
 
 import numpy as np
 
 from discrete.errors import ModelError
 
-SWEEP_KEYS = {"analysis", "grid", "points", "periods"}
-ANALYSES = ("steady", "forced", "simulate")
+MAX_POINTS = 100_000
+"""Largest number of sweep points (each an independent analysis)."""
 
 
 # ------------------------------------------------------------------ definition
-def _values(spec, key):
-    where = f"[sweep] grid.{key}"
+def _axis(spec) -> list:
+    """The values of one grid axis: a list as given, or { start, stop, points, spacing }."""
     if isinstance(spec, list):
-        if not spec:
-            raise ModelError(where, key, spec, "a non-empty list of values")
         return list(spec)
-    if isinstance(spec, dict):
-        unknown = set(spec) - {"start", "stop", "points", "spacing"}
-        if unknown:
-            raise ModelError(where, sorted(unknown)[0], spec[sorted(unknown)[0]], "start, stop, points, spacing")
-        try:
-            a, b, n = float(spec["start"]), float(spec["stop"]), int(spec["points"])
-        except (KeyError, TypeError, ValueError):
-            raise ModelError(where, key, spec, "{ start = .., stop = .., points = N }") from None
-        if n < 1:
-            raise ModelError(where, "points", n, "an integer >= 1")
-        sp = spec.get("spacing", "linear")
-        if sp == "log":
-            if a <= 0 or b <= 0:
-                raise ModelError(where, "start", a, "positive start and stop for spacing = 'log'")
-            return [float(x) for x in np.geomspace(a, b, n)]
-        if sp != "linear":
-            raise ModelError(where, "spacing", sp, "'linear' | 'log'")
-        return [float(x) for x in np.linspace(a, b, n)]
-    raise ModelError(where, key, spec, "a list of values or { start, stop, points }")
+    f = np.geomspace if spec.spacing == "log" else np.linspace
+    return [float(x) for x in f(spec.start, spec.stop, spec.points)]
 
 
 def _locate(doc: dict, path: str):
@@ -113,51 +96,45 @@ def apply(doc: dict, values: dict) -> dict:
     return d
 
 
-def parse_sweep(doc: dict):
-    sw = doc.get("sweep")
-    if not isinstance(sw, dict):
-        raise ModelError("model file", "sweep", sw, "a table [sweep] (grid = {..} or points = [..])")
-    unknown = set(sw) - SWEEP_KEYS
-    if unknown:
-        k = sorted(unknown)[0]
-        raise ModelError("[sweep]", k, sw[k], f"one of {sorted(SWEEP_KEYS)}")
-    analysis = sw.get("analysis", "steady")
-    if analysis not in ANALYSES:
-        raise ModelError("[sweep]", "analysis", analysis, " | ".join(repr(a) for a in ANALYSES))
-    if ("grid" in sw) == ("points" in sw):
-        raise ModelError("[sweep]", "grid", sw.get("grid"), "exactly one of grid = {..} or points = [..]")
-    if "grid" in sw:
-        g = sw["grid"]
-        if not isinstance(g, dict) or not g:
-            raise ModelError("[sweep]", "grid", g, "a non-empty table of key = values")
-        keys = list(g)
-        vals = [_values(g[k], k) for k in keys]
-        pts = [dict(zip(keys, combo)) for combo in itertools.product(*vals)]
+def parse_sweep(doc: dict) -> dict:
+    """The points of the ``[sweep]`` table of a parsed model file, every point checked: its key paths
+    exist and the model it gives is valid (a bad value fails here, before any point runs)."""
+    from ..modelfile import parse
+    from ..modelfile.budget import check_count
+
+    typed = parse(doc)
+    sw = getattr(typed, "sweep", None)
+    if sw is None:
+        raise ModelError(f"model file", "sweep", None, "a table [sweep] (grid = {..} or points = [..])")
+    if sw.grid is not None:
+        keys = list(sw.grid)
+        axes = [_axis(sw.grid[k]) for k in keys]
+        check_count("[sweep]", "grid", int(np.prod([len(a) for a in axes], dtype=float)), MAX_POINTS, "points")
+        pts = [dict(zip(keys, combo)) for combo in itertools.product(*axes)]
     else:
-        p = sw["points"]
-        if not isinstance(p, list) or not p or not all(isinstance(x, dict) and x for x in p):
-            raise ModelError("[sweep]", "points", p, "a non-empty list of tables { key = value, .. }")
-        pts = [dict(x) for x in p]
-    periods = sw.get("periods", 300)
-    if isinstance(periods, bool) or not isinstance(periods, int) or periods < 1:
-        raise ModelError("[sweep]", "periods", periods, "an integer >= 1")
-    # validate every key path on the model (and the values by building the first point's model)
+        check_count("[sweep]", "points", len(sw.points), MAX_POINTS, "points")
+        pts = [dict(x) for x in sw.points]
     base = {k: v for k, v in doc.items() if k != "sweep"}
-    for path in {k for pt in pts for k in pt}:
+    for path in dict.fromkeys(k for pt in pts for k in pt):
         _locate(copy.deepcopy(base), path)
-    return {"analysis": analysis, "points": pts, "periods": periods}
+    for pt in pts:
+        _point_study(base, pt, sw.analysis)
+    return {"analysis": sw.analysis, "points": pts, "periods": sw.periods}
 
 
-def _check_model(doc: dict, analysis: str):
-    """Build the model of the first point so bad keys/values fail before the sweep starts."""
-    if analysis in ("steady", "forced"):
-        from discrete.steady import SteadyModel
+def _point_study(base: dict, values: dict, analysis: str):
+    """The validated model of one point (ModelError naming the point on a bad value)."""
+    from ..study import Study
 
-        SteadyModel(doc)
-    else:
-        from discrete.nonsmooth import build_problem
-
-        build_problem(_time_doc(doc))
+    try:
+        study = Study.parse(apply(base, values))
+    except ModelError as exc:
+        raise ModelError(f"[sweep] point {values}", exc.key, exc.value, f"{exc.allowed} (in {exc.where})") from None
+    if analysis in ("steady", "forced") and not study.is_steady():
+        raise ModelError("[sweep]", "analysis", analysis, "a model with a [steady] table for this analysis")
+    if analysis == "simulate" and getattr(study.doc, "simulation", None) is None:
+        raise ModelError("[sweep]", "analysis", analysis, "a model with a [simulation] table for this analysis")
+    return study
 
 
 # ------------------------------------------------------------------ one point
@@ -175,22 +152,18 @@ def evaluate_point(doc: dict, values: dict, analysis: str, periods: int = 300) -
 
 def _evaluate(doc: dict, values: dict, analysis: str, periods: int) -> dict:
     try:
-        d = apply(doc, values)
+        study = _point_study(doc, values, analysis)
         if analysis == "steady":
-            res = _steady_point(d, periods)
+            res = _steady_point(study, periods)
         elif analysis == "forced":
-            from discrete.steady import run_forced
-
-            r = run_forced(d)
+            r = study.forced()
             w, m = r.peak()
             res = {"peak_omega_rad_s": w, "peak_response": m, "folds_rad_s": [f["omega"] for f in r.folds],
                    "jump_intervals_rad_s": [list(j) for j in r.jump_intervals()],
                    "period_doubling_intervals_rad_s": [list(j) for j in r.unstable_intervals("flip")],
                    "n_points": int(r.omega.size), "reason": r.reason}
         else:
-            from discrete.nonsmooth import run_model_file
-
-            r = run_model_file(_time_doc(d))
+            r = study.simulate()
             res = {"period": r.period, "energy_error": r.energy_error, "n_events": len(r.events),
                    "stopped_early": bool(r.stopped_early),
                    "x_max": {n: float(np.max(r.x[i])) for i, n in enumerate(r.names)},
@@ -200,19 +173,12 @@ def _evaluate(doc: dict, values: dict, analysis: str, periods: int) -> dict:
         return {"values": values, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
 
 
-def _time_doc(d: dict) -> dict:
-    """The model without the steady-state tables (the time simulation does not accept them)."""
-    from discrete.steady import TOP_LEVEL_KEYS
+def _steady_point(study, periods: int) -> dict:
+    from discrete.steady import ShootingModel
 
-    return {k: v for k, v in d.items() if k not in TOP_LEVEL_KEYS}
-
-
-def _steady_point(d: dict, periods: int) -> dict:
-    from discrete.steady import ShootingModel, SteadyModel
-
-    sm = SteadyModel(d)
+    sm = study.steady_model()
     w = float(sm.problem0.omegas[0])
-    sh = ShootingModel(sm.factory, nu=sm.cfg["subharmonic"], steps_per_period=sm.cfg["steps_per_period"])
+    sh = ShootingModel(sm.factory, nu=sm.cfg.subharmonic, steps_per_period=sm.cfg.steps_per_period)
     n = sh.n
     y, used, settled = sh.settle(np.zeros(n), w, periods=periods, tol=1e-9, scale=np.ones(n))
     _, res = sh.run(y, w, dense=True, periods=4)
@@ -301,24 +267,16 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     """Run the sweep of ``model_path``.  ``workers``: size of the in-process local cluster (default: the
     CPU count); ``workers = 0`` runs serially without Dask.  Returns the exit code."""
     stream = stream or sys.stderr
-    try:
-        with open(model_path, "rb") as fh:
-            doc = tomllib.load(fh)
-        spec = parse_sweep(doc)
-        base = {k: v for k, v in doc.items() if k != "sweep"}
-        _check_model(apply(base, spec["points"][0]), spec["analysis"])
-    except (ModelError, OSError, tomllib.TOMLDecodeError) as exc:
-        print(f"error: {exc}", file=stream)
-        return 2
-    except Exception as exc:
-        print(f"error: the first sweep point's model is invalid: {type(exc).__name__}: {exc}", file=stream)
-        return 2
+    from ..modelfile.source import read_toml
+
+    doc = read_toml(model_path)
+    spec = parse_sweep(doc)
+    base = {k: v for k, v in doc.items() if k != "sweep"}
     pts = spec["points"]
     n = len(pts)
     outdir = Path(resume or out or (Path(model_path).stem + "-sweep"))
     if resume and not Path(resume).is_dir():
-        print(f"error: --resume {resume!r}: not a directory of an earlier sweep", file=stream)
-        return 2
+        raise ModelError("command line", "--resume", str(resume), "the directory of an earlier sweep")
     (outdir / "points").mkdir(parents=True, exist_ok=True)
     meta = {"model": str(model_path), "analysis": spec["analysis"], "n_points": n, "points": pts}
     mp = outdir / "sweep.json"
@@ -326,9 +284,8 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
         with open(mp) as fh:
             old = json.load(fh)
         if old.get("points") != json.loads(json.dumps(pts)) or old.get("analysis") != spec["analysis"]:
-            print(f"error: {outdir} holds a different sweep (points or analysis changed); use another --out",
-                  file=stream)
-            return 2
+            raise ModelError("command line", "--out", str(outdir), "a new directory: this one holds a different "
+                             "sweep (points or analysis changed)")
     else:
         with open(mp, "w") as fh:
             json.dump(meta, fh, indent=1)
@@ -353,20 +310,15 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
                 if bar:
                     bar.update(1)
         elif todo:
-            try:
-                Client, LocalCluster, as_completed = _dask()
-            except ModelError as exc:
-                print(f"error: {exc}", file=stream)
-                return 2
+            Client, LocalCluster, as_completed = _dask()
             cluster = None
             try:
                 if scheduler:
                     try:
                         client = Client(scheduler, timeout="5s")
                     except Exception as exc:
-                        print(f"error: cannot reach the Dask scheduler at {scheduler!r}: {type(exc).__name__}: {exc}",
-                              file=stream)
-                        return 2
+                        raise ModelError("command line", "--scheduler", scheduler, "the address of a reachable Dask "
+                                         f"scheduler ({type(exc).__name__}: {exc})") from None
                 else:
                     nw = int(workers or os.cpu_count() or 1)
                     # one single-threaded process per core: the solvers are small-matrix numpy, and BLAS
@@ -421,8 +373,8 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     summary = {"model": str(model_path), "analysis": spec["analysis"], "out": str(outdir), "n_points": n,
                "n_ok": n - len(bad), "n_failed": len(bad), "points": recs}
     if json_path:
-        Path(json_path).parent.mkdir(parents=True, exist_ok=True)
-        with open(json_path, "w") as fh:
-            json.dump(summary, fh, indent=1)
+        from ..output import payload, write_json
+
+        write_json(json_path, payload("sweep", None, summary))
     print(f"sweep: {n - len(bad)} of {n} points ok" + (f", {len(bad)} failed" if bad else ""), file=stream)
     return 1 if bad else 0

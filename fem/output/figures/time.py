@@ -1,4 +1,5 @@
-"""Time plots and phase portraits (PNG, matplotlib Agg); they take a result, never recompute it."""
+"""Time plots and phase portraits of simulations (PNG, matplotlib Agg): lumped (:func:`plot_time_history`)
+and hybrid (:func:`plot_hybrid`); they take a result, never recompute it."""
 from __future__ import annotations
 
 import pathlib
@@ -6,7 +7,7 @@ import pathlib
 import numpy as np
 
 
-def plot_result(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
+def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
     """Write ``time.png`` (x and v of all DOFs, events marked), ``phase_<dof>.png`` per body (not drivers)
     and ``energy.png`` (E - E0 and the integrated work).  Returns the written paths."""
     import matplotlib
@@ -75,4 +76,61 @@ def plot_result(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
         fig.savefig(p, dpi=110)
         plt.close(fig)
         paths.append(p)
+    return paths
+
+
+def plot_hybrid(result, out_dir) -> list[pathlib.Path]:
+    """``field.png`` (space-time map of the primary field), ``coupling.png`` (history of the DOFs
+    where elements act, events marked), ``energy.png`` (E - E0 against the integrated work)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = pathlib.Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    fe = result.fe
+    prim = fe.model.fields[0]
+    xs, _ = fe.nodal_values(result.field_history[0], prim)
+    Z = np.array([fe.nodal_values(q, prim)[1] for q in result.field_history])
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    im = ax.pcolormesh(xs, result.t, Z, shading="nearest", cmap="RdBu_r")
+    fig.colorbar(im, ax=ax, label=prim)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("t (s)")
+    ax.set_title(f"{result.compiled.system.title or 'hybrid model'}: {prim}(x, t)")
+    p = out / "field.png"
+    fig.savefig(p, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    paths.append(p)
+    fig, ax = plt.subplots(figsize=(8, 4))
+    sys_ = fe.system
+    shown = 0
+    for j in [int(j) for j in result.compiled.coupling][:6]:
+        ax.plot(result.t, result.field_history[:, j], lw=1, label=sys_.label(j))
+        shown += 1
+    if not shown:
+        tip = int(np.argmax(np.where(sys_.dof_field == prim, sys_.dof_x, -np.inf)))
+        ax.plot(result.t, result.field_history[:, tip], lw=1, label=sys_.label(tip))
+    ev = np.array([e.t for e in result.events])
+    if ev.size and ev.size < 2000:
+        ax.plot(ev, 0 * ev, "k|", ms=8, label="events")
+    ax.set_xlabel("t (s)")
+    ax.legend(fontsize=7)
+    p = out / "coupling.png"
+    fig.savefig(p, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    paths.append(p)
+    s = result.solver
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    ax.plot(s.t, s.energy - s.energy[0], lw=1, label="E - E0")
+    ax.plot(s.t, s.work, "--", lw=1, label="work of non-conservative forces")
+    ax.set_xlabel("t (s)")
+    ax.set_title(f"energy balance: error {result.energy_error:.2e}")
+    ax.legend(fontsize=8)
+    p = out / "energy.png"
+    fig.savefig(p, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    paths.append(p)
     return paths

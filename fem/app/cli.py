@@ -1,0 +1,117 @@
+"""The ``drivefem`` command line: argument parsing only; each command is one function of
+:mod:`fem.app.commands` (design.md §5, README "CLI and JSON")."""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import traceback
+import warnings
+
+from discrete.errors import ModelError, SolverError
+
+from . import commands
+
+EXIT_INTERNAL = 70      # a bug of drivefem (not in the documented set, so tests and fuzzers see it)
+EXIT_INTERRUPTED = 130
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="drivefem", description="FE and lumped models of machine drives: modal, "
+                                "forced and nonsmooth time analyses, validated against the textbook.")
+    sub = p.add_subparsers(dest="command", required=True)
+    m = sub.add_parser("modal", help="natural frequencies and mode shapes")
+    m.add_argument("model")
+    m.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
+    m.add_argument("--json", help="write the JSON result here")
+    m.add_argument("--plot", help="write a PNG line plot of the mode shapes here (FE models)")
+    m.add_argument("--vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
+    m.add_argument("--png", help="render one PNG per mode off-screen into this directory (FE models)")
+    m.set_defaults(func=commands.modal)
+    r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data")
+    r.add_argument("model")
+    r.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
+    r.add_argument("--mode", action="append", type=int, help="render only this mode number (repeatable)")
+    r.add_argument("--out", required=True, help="output directory")
+    r.add_argument("--gif", action="store_true", help="also write an animated GIF per mode")
+    r.set_defaults(func=commands.render)
+    f = sub.add_parser("forced", help="harmonic response, or the nonlinear amplitude-frequency curve of [steady]")
+    f.add_argument("model")
+    f.add_argument("--json")
+    f.add_argument("--csv")
+    f.add_argument("--plot", help="write a PNG of the response here")
+    f.add_argument("--all", action="store_true", help="print every frequency")
+    f.set_defaults(func=commands.forced)
+    c = sub.add_parser("compare", help="a [drive] model by the discrete, transfer-matrix and continuum methods")
+    c.add_argument("model")
+    c.add_argument("--json")
+    c.set_defaults(func=commands.compare)
+    s = sub.add_parser("simulate", help="time simulation of a model with nonsmooth elements")
+    s.add_argument("model")
+    s.add_argument("--json")
+    s.add_argument("--csv")
+    s.add_argument("--png", help="directory for time plots and phase portraits")
+    s.set_defaults(func=commands.simulate)
+    w = sub.add_parser("sweep", help="evaluate a grid of parameter points ([sweep] table) on Dask")
+    w.add_argument("model")
+    w.add_argument("--scheduler", help="address of an existing dask.distributed scheduler (default: local cluster)")
+    w.add_argument("--resume", help="directory of a previous sweep: points already done are not recomputed")
+    w.add_argument("--out", help="directory for the per-point results (default: next to --json or ./sweep-<model>)")
+    w.add_argument("--json", help="write the collected results here")
+    w.add_argument("--workers", type=int, default=None, help="local workers (0: serial, no Dask)")
+    w.set_defaults(func=commands.sweep)
+    v = sub.add_parser("validate", help="run the validation catalogue")
+    v.add_argument("--case", action="append", help="case or group name (repeatable)")
+    v.add_argument("--report", help="directory for the report (markdown, JSON, plots)")
+    v.add_argument("--json")
+    v.add_argument("--fast", action="store_true", help="skip the slow cases")
+    v.add_argument("--quiet", action="store_true", help="no progress bar")
+    v.set_defaults(func=commands.validate)
+    k = sub.add_parser("schema", help="print the JSON Schema of model files (for editors: Taplo, Even Better TOML)")
+    k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive"],
+                   help="one kind of model file (default: any model file)")
+    k.add_argument("--out", help="write the schema to this file")
+    k.set_defaults(func=commands.schema)
+    d = sub.add_parser("demo", help="run representative examples end to end into ./drivefem-demo/")
+    d.add_argument("--out", default="drivefem-demo")
+    d.set_defaults(func=commands.demo)
+    return p
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"drivefem: warning: {message}", file=sys.stderr)
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("default")
+            warnings.showwarning = _show_warning
+            return args.func(args)
+    except ModelError as exc:
+        print(f"drivefem: error: {exc}", file=sys.stderr)
+        return 2
+    except SolverError as exc:
+        print(f"drivefem: solver failure: {exc}", file=sys.stderr)
+        return 4
+    except KeyboardInterrupt:
+        print("drivefem: interrupted (files already written are kept)", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:  # output piped into head & co.
+        sys.stderr.close()
+        return 0
+    except MemoryError:
+        print("drivefem: solver failure: out of memory (reduce elements, harmonics or points)", file=sys.stderr)
+        return 4
+    except Exception as exc:  # a bug: one line for the user, the traceback with DRIVEFEM_DEBUG=1
+        if os.environ.get("DRIVEFEM_DEBUG"):
+            traceback.print_exc()
+        tb = traceback.extract_tb(exc.__traceback__)[-1]
+        print(f"drivefem: internal error: {type(exc).__name__}: {exc} (at {os.path.basename(tb.filename)}:{tb.lineno}; "
+              "please report it with the model file; DRIVEFEM_DEBUG=1 shows the traceback)", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,207 @@
+"""One function per ``drivefem`` command: load the model once, run the analysis of its kind, write
+the outputs through the output layer, return the exit code (documented in the README):
+
+0 done; 1 done but incomplete (a run or continuation stopped early, a sweep point failed, a
+validation case failed); 2 bad input (model, options, paths); 3 modes not reliable in double
+precision; 4 solver failure (including a result that became non-finite); 5 pictures not rendered
+(no off-screen OpenGL); 130 interrupted (Ctrl-C; what was written is kept)."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from discrete.errors import ModelError
+
+from ..output import check_output_path, columns, contract, tables, write_json
+from ..output.jsonio import encode
+from ..study import Study
+
+
+def _outputs(args, **options) -> None:
+    """Check every output path given on the command line before any work starts."""
+    for attr, directory in options.items():
+        value = getattr(args, attr, None)
+        if value:
+            check_output_path(value, "--" + attr.replace("_", "-"), directory=directory)
+
+
+def _emit(args, command: str, study, data: dict) -> dict:
+    """Encode (refusing non-finite numbers) and write the JSON document; returns it."""
+    doc = encode(contract.payload(command, study, data))
+    if getattr(args, "json", None):
+        write_json(args.json, doc)
+    return doc
+
+
+# ---------------------------------------------------------------- modal
+def modal(args) -> int:
+    _outputs(args, json=False, plot=False, vtu=False, png=True)
+    study = Study.load(args.model)
+    if (args.vtu or args.png or args.plot) and study.kind != "fe":
+        opt = "--vtu" if args.vtu else ("--png" if args.png else "--plot")
+        raise ModelError("command line", opt, getattr(args, opt[2:]), "an FE model file (mode-shape files and "
+                         f"pictures are drawn for [[segment]] models; this is a {study.kind} model)")
+    res = study.modal(args.modes)
+    data = contract.modal_data(study, res)
+    if study.kind == "lumped":
+        bound = _dunkerley(study)
+        if bound is not None:
+            data["dunkerley_lower_bound_rad_s"] = bound
+    _emit(args, "modal", study, data)
+    tables.modal_table(study, res)
+    if study.kind == "lumped" and data.get("dunkerley_lower_bound_rad_s") is not None:
+        print(tables.dunkerley_line(data["dunkerley_lower_bound_rad_s"], res.omega_rad_s[0]))
+    if study.kind == "drive":
+        return 0 if res.ok else 3
+    if args.vtu:
+        from ..output.mesh import write_modes
+
+        print(f"wrote {write_modes(study.fe_model, res, args.vtu)}")
+    if args.plot:
+        from ..output.figures import plot_mode_shapes
+
+        print(f"wrote {plot_mode_shapes(study.fe_model, res, args.plot)}")
+    if args.png:
+        from ..render import RenderUnavailable, render_modes
+
+        try:
+            for p in render_modes(study.fe_model, res, args.png):
+                print(f"wrote {p}")
+        except RenderUnavailable as exc:
+            print(f"warning: no images: {exc}", file=sys.stderr)
+            return 5
+    return 0 if (res.reliable | res.rigid).all() else 3
+
+
+def _dunkerley(study) -> float | None:
+    """Dunkerley's lower bound (4.40) of the first frequency of a grounded lumped model."""
+    from discrete.dunkerley import dunkerley_bound
+
+    sys_ = study.linear_system()
+    if sys_.rigid_modes is not None and sys_.rigid_modes.shape[1]:
+        return None
+    return dunkerley_bound(sys_)
+
+
+# --------------------------------------------------------------- forced
+def forced(args) -> int:
+    _outputs(args, json=False, csv=False, plot=False)
+    study = Study.load(args.model)
+    res = study.forced()
+    data = contract.forced_data(study, res)
+    _emit(args, "forced", study, data)
+    tables.forced_table(study, res, all_rows=args.all)
+    steady = data["steady"]
+    if args.csv:
+        table = columns.afc(res) if steady else (columns.drive_forced(res) if study.kind == "drive"
+                                                 else columns.harmonic(res))
+        columns.write(args.csv, table)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from ..output.figures import plot_afc, plot_frf
+
+        if steady:
+            plot_afc(res, args.plot)
+            print(f"wrote {args.plot}")
+        else:
+            print(f"wrote {plot_frf(res, args.plot, study.title)}")
+    if steady and not str(res.reason).startswith("reached"):
+        print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
+        return 1
+    return 0
+
+
+# ------------------------------------------------------------- compare
+def compare(args) -> int:
+    _outputs(args, json=False)
+    study = Study.load(args.model)
+    if study.kind != "drive":
+        raise ModelError(str(args.model), "drive", None, "a model file with a [drive] table (drive of regular structure)")
+    res = study.compare()
+    _emit(args, "compare", study, res.to_dict())
+    print((study.title + "\n" if study.title else "") + res.table())
+    return 0
+
+
+# ------------------------------------------------------------- simulate
+def simulate(args) -> int:
+    _outputs(args, json=False, csv=False, png=True)
+    study = Study.load(args.model)
+    if study.kind not in ("lumped", "hybrid"):
+        raise ModelError(str(args.model), "simulation", None, "a lumped or hybrid model file with a [simulation] table "
+                         f"(this is a {study.kind} model)")
+    res = study.simulate()
+    d = _emit(args, "simulate", study, contract.simulate_data(study, res))
+    tables.simulation_summary(study.title, d)
+    if args.csv:
+        columns.write(args.csv, columns.hybrid(res) if study.kind == "hybrid" else columns.time_history(res))
+        print(f"wrote {args.csv}")
+    if args.png:
+        from ..output.figures import plot_hybrid, plot_time_history
+
+        plot = plot_hybrid if study.kind == "hybrid" else plot_time_history
+        for p in plot(res, args.png):
+            print(f"wrote {p}")
+    return 1 if d.get("stopped_early") else 0
+
+
+# ---------------------------------------------------------------- sweep
+def sweep(args) -> int:
+    from .sweep import run_sweep
+
+    _outputs(args, json=False, out=True, resume=True)
+    return run_sweep(args.model, scheduler=args.scheduler, resume=args.resume, out=args.out, json_path=args.json,
+                     workers=args.workers)
+
+
+# ------------------------------------------------------------- validate
+def validate(args) -> int:
+    from validation.report import print_table, run_validation, write_report
+
+    _outputs(args, json=False, report=True)
+    outcomes = run_validation(args.case or None, include_slow=not args.fast, progress=not args.quiet)
+    print_table(outcomes)
+    data = {"cases": [c.to_dict() | {"case": o.case.name} for o in outcomes for c in o.checks],
+            "errors": {o.case.name: o.error for o in outcomes if o.error},
+            "passed": all(o.passed for o in outcomes)}
+    if args.json:
+        write_json(args.json, contract.payload("validate", None, data))
+    if args.report:
+        print(f"wrote {write_report(outcomes, args.report)}")
+    return 0 if data["passed"] else 1
+
+
+# --------------------------------------------------------------- render
+def render(args) -> int:
+    from ..render import render_study
+
+    _outputs(args, out=True)
+    study = Study.load(args.model)
+    modes = [int(m) for m in args.mode] if args.mode else None
+    rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes)
+    for p in rep.data_files + rep.images:
+        print(f"wrote {p}")
+    print(rep.message)
+    return 0 if rep.rendered else 5
+
+
+# --------------------------------------------------------------- schema
+def schema(args) -> int:
+    from ..modelfile.load import dumps_schema
+
+    _outputs(args, out=False)
+    text = dumps_schema(args.kind)
+    if args.out:
+        Path(args.out).write_text(text)
+        print(f"wrote {args.out}")
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+# ----------------------------------------------------------------- demo
+def demo(args) -> int:
+    from .demo import run_demo
+
+    _outputs(args, out=True)
+    return run_demo(Path(args.out))

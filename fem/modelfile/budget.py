@@ -1,0 +1,97 @@
+"""Size and cost limits, checked before any work starts: a model file can ask for more work than a
+machine can do (1e9 elements, 1e300 s of simulated time, 1e-300 s steps); that is a clear error
+naming the key and the estimated cost, never a hang or a MemoryError.
+
+The limits are generous for real models (the largest example asks for a few per cent of any of
+them); a deliberate larger run raises them all with the environment variable ``DRIVEFEM_BUDGET``
+(a factor, e.g. ``DRIVEFEM_BUDGET=10``)."""
+from __future__ import annotations
+
+import math
+import os
+
+from discrete.errors import ModelError
+
+MAX_FE_DOFS = 2_000_000          # FE unknowns (sparse factorisation memory)
+MAX_DRIVE_N = 200_000            # mechanisms of a drive of regular structure
+MAX_MODES = 5_000                # eigenpairs asked for
+MAX_FREQUENCIES = 100_000        # frequencies of a harmonic analysis
+MAX_HB_UNKNOWNS = 20_000         # harmonic-balance unknowns (dense Jacobian)
+MAX_HB_SAMPLES = 200_000         # AFT time samples per period
+MAX_CONTINUATION_STEPS = 100_000
+MAX_TIME_STEPS = 5_000_000       # steps of a time integration (estimated)
+MAX_OUTPUT_SAMPLES = 2_000_000   # recorded instants of a simulation
+
+
+def scale() -> float:
+    """The budget factor of ``DRIVEFEM_BUDGET`` (default 1)."""
+    raw = os.environ.get("DRIVEFEM_BUDGET", "1")
+    try:
+        f = float(raw)
+    except ValueError:
+        f = float("nan")
+    if not (f > 0 and math.isfinite(f)):
+        raise ModelError("environment", "DRIVEFEM_BUDGET", raw, "a number > 0 (a factor on every size limit)")
+    return f
+
+
+def check_count(where: str, key, estimate: float, limit: float, what: str) -> None:
+    """Refuse ``estimate`` (a number of ``what``) above ``limit`` times the budget factor."""
+    lim = limit * scale()
+    if not (estimate <= lim):          # also NaN and infinity
+        shown = f"{estimate:.3g}" if math.isfinite(estimate) else "unbounded"
+        factor = estimate / limit if math.isfinite(estimate) else float("inf")
+        raise ModelError(where, key, f"{shown} {what} (estimated)", f"at most {lim:.3g} {what}; a deliberate larger "
+                         f"run needs DRIVEFEM_BUDGET >= {factor:.3g}")
+
+
+def check_document(doc, kind: str) -> None:
+    """The limits that follow from the file alone (sizes), before anything is built."""
+    if kind in ("fe", "hybrid"):
+        fields = 2 if doc.model.physics == "bending" else 1
+        order = 1 if (doc.model.physics == "bending" and doc.model.theory == "euler-bernoulli") else doc.model.order
+        dofs = sum(s.elements for s in doc.segment) * order * fields
+        check_count("[[segment]]", "elements", dofs, MAX_FE_DOFS, "FE unknowns")
+    if kind == "drive":
+        n = doc.drive.n
+        conv = getattr(doc.analysis, "convergence_n", None) or []
+        check_count("[drive]", "n", max([n] + list(conv)), MAX_DRIVE_N, "mechanisms")
+    an = doc.analysis
+    if an is not None and an.modes is not None:
+        check_count("[analysis]", "modes", an.modes, MAX_MODES, "modes")
+    if getattr(an, "sweep_hz", None) is not None:
+        check_count("[analysis.sweep_hz]", "points", an.sweep_hz.points, MAX_FREQUENCIES, "frequencies")
+    st = getattr(doc, "steady", None)
+    if st is not None:
+        check_count("[steady]", "max_steps", st.max_steps, MAX_CONTINUATION_STEPS, "continuation steps")
+        check_count("[steady]", "harmonics", 2 * st.harmonics + 1, MAX_HB_UNKNOWNS, "Fourier coefficients per DOF")
+        if st.samples is not None:
+            check_count("[steady]", "samples", st.samples, MAX_HB_SAMPLES, "time samples per period")
+    sim = getattr(doc, "simulation", None)
+    if sim is not None:
+        t = sim.t_end
+        if sim.max_step is not None:
+            check_count("[simulation]", "max_step", t / sim.max_step, MAX_TIME_STEPS, "steps (t_end / max_step)")
+        if sim.output_step is not None:
+            check_count("[simulation]", "output_step", t / sim.output_step, MAX_OUTPUT_SAMPLES,
+                        "output samples (t_end / output_step)")
+        if sim.dt is not None:
+            check_count("[simulation]", "dt", t / sim.dt, MAX_TIME_STEPS, "steps (t_end / dt)")
+        if sim.samples is not None:
+            check_count("[simulation]", "samples", sim.samples, MAX_OUTPUT_SAMPLES, "output samples")
+
+
+def check_time_integration(t_end: float, omega_max: float, steps_per_period: int, method: str) -> None:
+    """The steps an event-driven or regularised run needs to resolve its highest frequency
+    (``omega_max`` of the linear part and the stiffest element) over ``t_end``."""
+    if method == "moreau":
+        return                            # fixed step: checked from dt
+    steps = t_end * omega_max * steps_per_period / (2 * math.pi)
+    check_count("[simulation]", "t_end", steps, MAX_TIME_STEPS,
+                f"steps ({steps_per_period} per period of the highest frequency {omega_max:.3g} rad/s of the "
+                "model: stiff elements or small inertias shorten it)")
+
+
+def check_hb(n_dofs: int, harmonics: int) -> None:
+    check_count("[steady]", "harmonics", n_dofs * (2 * harmonics + 1), MAX_HB_UNKNOWNS,
+                f"harmonic-balance unknowns ({n_dofs} DOFs x (2 harmonics + 1))")

@@ -1,0 +1,198 @@
+"""The model file as a whole: one declared type per kind of file, composed of the shared tables.
+
+Kinds (decided once, from the tables present, by :func:`detect_kind`):
+
+* ``fe``: a shaft/rod/beam (``[[segment]]``) with linear analyses;
+* ``lumped``: bodies, drivers, springs, gears (``[[body]]``/``[[driver]]``), with nonsmooth
+  elements, time simulation and nonlinear steady states;
+* ``hybrid``: FE segments plus lumped bodies and nonsmooth elements (``[[segment]]`` with any
+  element, body, driver, force, ``[reduction]`` or ``[simulation]``);
+* ``drive``: a drive of regular structure (``[drive]``).
+"""
+from __future__ import annotations
+
+from typing import Annotated
+
+from pydantic import Field, model_validator
+
+from discrete.errors import ModelError
+
+from .analysis import Analysis, BaseMotion, Damping, ForcedAnalysis, Load, Response
+from .base import Table, rule
+from .drive import Drive
+from .elements import CubicSpring, DistributedFriction, Force, Friction, Gap, Impact, OneSided
+from .fe import Material, ModelSettings, Point, Segment, Support
+from .lumped import Body, Damper, Driver, Gear, Spring
+from .simulation import Constants, Initial, Reduction, Simulation
+from .steady import Steady, Sweep
+
+
+def _array(item):
+    return Annotated[list[item], Field(default_factory=list)]
+
+
+class ModelFileBase(Table):
+    """Keys of every model file."""
+
+    title: str = ""
+    """Free text, shown in outputs."""
+
+
+class FETables(Table):
+    material: Material | None = None
+    """[material]: defaults of every segment (E, G or nu, rho)."""
+    model: ModelSettings
+    """[model]: physics, theory, mass, order."""
+    segment: Annotated[list[Segment], Field(min_length=1)]
+    """[[segment]]: uniform pieces of shaft, consecutive from x = 0."""
+    support: _array(Support)
+    """[[support]]: clamped, pinned or spring supports at nodes."""
+    point: _array(Point)
+    """[[point]]: lumped masses, inertias and springs at nodes."""
+
+
+class LinearTables(Table):
+    analysis: Analysis | None = None
+    """[analysis]: type = "modal" | "forced" and its settings."""
+    damping: Damping | None = None
+    """[damping]: global damping (rayleigh, modal, hysteretic, none, viscous)."""
+
+
+class ExcitationTables(Table):
+    load: _array(Load)
+    """[[load]]: harmonic forces of the forced analysis."""
+    base_motion: _array(BaseMotion)
+    """[[base_motion]]: harmonic motion of held DOFs (kinematic excitation)."""
+    response: _array(Response)
+    """[[response]]: output DOFs of the forced analysis."""
+
+
+class LumpedTables(Table):
+    body: _array(Body)
+    """[[body]]: lumped bodies (one coordinate each)."""
+    driver: _array(Driver)
+    """[[driver]]: prescribed motions."""
+    spring: _array(Spring)
+    """[[spring]]: linear springs (with optional parallel dashpots)."""
+    damper: _array(Damper)
+    """[[damper]]: viscous dampers."""
+
+
+class ElementTables(Table):
+    friction: _array(Friction)
+    """[[friction]]: Coulomb friction with stick-slip."""
+    one_sided: _array(OneSided)
+    """[[one_sided]]: tension-only or compression-only springs."""
+    gap: _array(Gap)
+    """[[gap]]: clearances, backlash and elastic stops."""
+    impact: _array(Impact)
+    """[[impact]]: rigid stops with restitution."""
+    cubic_spring: _array(CubicSpring)
+    """[[cubic_spring]]: smooth cubic springs (harmonic balance)."""
+    force: _array(Force)
+    """[[force]]: external forces in time."""
+    constants: Constants = Constants()
+    """[constants]: g."""
+    simulation: Simulation | None = None
+    """[simulation]: time integration."""
+    steady: Steady | None = None
+    """[steady]: nonlinear amplitude-frequency curve (drivefem forced)."""
+    sweep: Sweep | None = None
+    """[sweep]: parameter map (drivefem sweep)."""
+
+
+def _frequencies_rule(doc) -> None:
+    """A linear forced analysis names exactly one frequency list; a nonlinear one ([steady]) none."""
+    an = doc.analysis
+    if not isinstance(an, ForcedAnalysis):
+        return
+    keys = an.frequency_keys
+    if getattr(doc, "steady", None) is not None:
+        if keys:
+            rule("analysis." + keys[0], getattr(an, keys[0]), "no frequency list with a [steady] table "
+                 "(the curve's frequencies are [steady] omega or z)")
+    elif len(keys) != 1:
+        rule("analysis.frequencies_hz", keys or None, "exactly one of frequencies_hz = [..], omega_rad_s = [..], "
+             "sweep_hz = { start, stop, points, spacing = 'linear' | 'log' }")
+
+
+class FEFile(ModelFileBase, FETables, LinearTables, ExcitationTables):
+    """An FE model file: a shaft, rod or beam with modal or harmonic analysis."""
+
+    @model_validator(mode="after")
+    def _rules(self):
+        _frequencies_rule(self)
+        return self
+
+
+class LumpedFile(ModelFileBase, LumpedTables, LinearTables, ExcitationTables, ElementTables):
+    """A lumped model file: bodies, drivers, springs, dampers, gears and nonsmooth elements."""
+
+    gear: _array(Gear)
+    """[[gear]]: rigid transmissions x_b = ratio x_a."""
+
+    @model_validator(mode="after")
+    def _rules(self):
+        _frequencies_rule(self)
+        return self
+
+
+class HybridFile(ModelFileBase, FETables, LumpedTables, LinearTables, ElementTables):
+    """A hybrid model file: FE segments plus lumped bodies and nonsmooth elements."""
+
+    distributed_friction: _array(DistributedFriction)
+    """[[distributed_friction]]: dry friction along the member (seed 003)."""
+    reduction: Reduction | None = None
+    """[reduction]: modal reduction of the FE part."""
+    initial: Initial = Initial()
+    """[initial]: initial state of the FE field."""
+
+    @model_validator(mode="after")
+    def _rules(self):
+        _frequencies_rule(self)
+        return self
+
+
+class DriveFile(ModelFileBase, LinearTables):
+    """A drive of regular structure: [drive] with [analysis] and [damping]."""
+
+    drive: Drive
+    """[drive]: n identical mechanisms on a main shaft."""
+
+
+KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile}
+HYBRID_MARKERS = ("body", "driver", "spring", "damper", "friction", "one_sided", "gap", "impact", "cubic_spring",
+                  "force", "distributed_friction", "reduction", "initial", "simulation", "steady", "sweep")
+
+
+def detect_kind(doc: dict) -> str:
+    """The kind of a parsed model file, from the tables it has (decided once)."""
+    if "drive" in doc:
+        return "drive"
+    if "segment" in doc:
+        return "hybrid" if any(k in doc for k in HYBRID_MARKERS) else "fe"
+    if "body" in doc or "driver" in doc:
+        return "lumped"
+    raise ModelError("model file", "segment", None, "at least one [[segment]] (FE or hybrid model), [[body]] "
+                     "(lumped model) or a [drive] table (drive of regular structure)")
+
+
+#: where a top-level key belongs, for the error of a key given in a file of another kind
+OTHER_KIND = {
+    **{k: "an FE table: only together with [[segment]] tables (FE or hybrid models)"
+       for k in ("material", "model", "support", "point", "reduction", "initial", "distributed_friction")},
+    **{k: "a table of FE and lumped models, not of drive files" for k in
+       ("segment", "body", "driver", "spring", "damper", "gear", "friction", "one_sided", "gap", "impact",
+        "cubic_spring", "force", "load", "base_motion", "response", "simulation", "steady", "sweep", "constants")},
+    "gear": "a lumped-model table ([[gear]] is eliminated exactly in lumped models; not in FE/hybrid files)",
+    "constants": "a table of time simulations (lumped or hybrid models)",
+    "drive": "the table of a drive file ([drive] files have only [drive], [analysis], [damping] and title)",
+}
+HINTS = {
+    "fe": {"constants": OTHER_KIND["constants"], "drive": OTHER_KIND["drive"], "gear": OTHER_KIND["gear"]},
+    "lumped": {k: v for k, v in OTHER_KIND.items() if v.startswith("an FE table") or k == "drive"},
+    "hybrid": {"gear": OTHER_KIND["gear"], "drive": OTHER_KIND["drive"],
+               **{k: "a table of the linear forced analysis of FE and lumped models, not of hybrid files"
+                  for k in ("load", "base_motion", "response")}},
+    "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
+}

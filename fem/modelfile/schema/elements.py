@@ -1,0 +1,248 @@
+"""Tables of the nonlinear elements and forces, shared by lumped and hybrid files: ``[[friction]]``,
+``[[one_sided]]``, ``[[gap]]``, ``[[impact]]``, ``[[cubic_spring]]``, ``[[force]]`` and (hybrid)
+``[[distributed_friction]]``.  Each element acts on a coordinate s given by the keys of
+:class:`Coordinate` (see docs/discrete.md and docs/hybrid.md for the laws)."""
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import Field, model_validator
+
+from .base import Fraction, NonNegative, Positive, Table, rule
+from .lumped import Ends, Ratios
+
+
+class Coordinate(Table):
+    """Where an element acts: ``body`` (s = x of a body or driver), ``x``/``dof`` (hybrid: an FE DOF)
+    or ``between`` two ends (s = r_b x_b - r_a x_a with ``ratios``); ``ratio`` scales a single
+    coordinate (s = ratio x)."""
+
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Element name (unique among elements; default <table><index>)."""
+    body: Annotated[str, Field(min_length=1)] | None = None
+    """A body or driver name: s = its coordinate."""
+    x: float | None = None
+    """Hybrid models: position of the FE node, m."""
+    dof: str | None = None
+    """Hybrid models: DOF name at the node (default: the primary field)."""
+    between: Ends | None = None
+    """Two ends: names, "ground" or (hybrid) { x = .., dof = .. }."""
+    ratios: Ratios | None = None
+    """[r_a, r_b] with between (default [1, 1])."""
+    ratio: float | None = None
+    """Scale of a single coordinate (body or x), s = ratio * x (default 1)."""
+
+    @model_validator(mode="after")
+    def _where(self):
+        given = [k for k in ("body", "x", "between") if getattr(self, k) is not None]
+        if len(given) > 1:
+            rule(given[1], getattr(self, given[1]), f"either body = .., x = .. (FE node) or between = [..], "
+                                                    f"not {given[0]} and {given[1]}")
+        if self.ratios is not None and self.between is None:
+            rule("ratios", self.ratios, "only with between = [..] (use ratio for a single coordinate)")
+        if self.ratio is not None and self.between is not None:
+            rule("ratio", self.ratio, "only with body or x (use ratios = [r_a, r_b] with between)")
+        if self.dof is not None and self.x is None:
+            rule("dof", self.dof, "only with x = .. (an FE node)")
+        return self
+
+    def _require_where(self):
+        if self.body is None and self.x is None and self.between is None:
+            rule("body", None, "body = \"name\", x = .. (FE node) or between = [\"a\", \"b\"] (required)")
+
+
+class Friction(Coordinate):
+    """``[[friction]]``: Coulomb friction with breakaway above the kinetic level and an optionally
+    moving counter-surface (seed 000 (1), textbook (8.34), seed 002 (1)).  Slip force
+    -sign(w) (kinetic + viscous |w| + quadratic w^2 + cubic |w|^3), w = s' - surface_velocity.
+
+    Levels as forces (``kinetic``, ``static``) or as a friction coefficient on a normal force
+    (``mu``, ``mu_static`` with ``normal``)."""
+
+    kinetic: NonNegative | None = None
+    """Kinetic friction level (force or torque)."""
+    static: NonNegative | None = None
+    """Breakaway (static) limit, >= kinetic (default: the kinetic level)."""
+    mu: NonNegative | None = None
+    """Friction coefficient (with normal)."""
+    mu_static: NonNegative | None = None
+    """Static friction coefficient, >= mu (default mu)."""
+    normal: Literal["weight", "given"] | Positive | None = None
+    """Normal force for mu: "weight" (g times the current inertia of the body, seed 004 §2) or a force."""
+    viscous: float = 0.0
+    """Velocity-proportional term a1 of the slip law."""
+    quadratic: float = 0.0
+    """Quadratic term a2 of the slip law (seed 002 combined law)."""
+    cubic: float = 0.0
+    """Cubic term a3 of the slip law (falling characteristic (8.48))."""
+    surface_velocity: float = 0.0
+    """Velocity of the counter-surface (clutch, belt)."""
+    restick: Literal["static", "kinetic"] = "static"
+    """At a stop during slip: stick within the static limit ("static") or within the kinetic level,
+    else reverse at once ("kinetic", seed 000)."""
+
+    @model_validator(mode="after")
+    def _levels(self):
+        self._require_where()
+        by_mu = self.normal is not None and self.normal != "given"
+        if by_mu:
+            for k in ("kinetic", "static"):
+                if getattr(self, k) is not None:
+                    rule(k, getattr(self, k), "not with normal = .. (give mu and mu_static)")
+            if self.mu is None:
+                rule("mu", None, "the friction coefficient with normal = .. (required key missing)")
+            if self.mu_static is not None and self.mu_static < self.mu:
+                rule("mu_static", self.mu_static, f"a number >= mu = {self.mu!r}")
+        else:
+            for k in ("mu", "mu_static"):
+                if getattr(self, k) is not None:
+                    rule(k, getattr(self, k), "only with normal = \"weight\" or a normal force")
+            if self.kinetic is None:
+                rule("kinetic", None, "the kinetic friction level (force or torque) (required key missing)")
+            if self.static is not None and self.static < self.kinetic:
+                rule("static", self.static, f"a number >= the kinetic level {self.kinetic!r}")
+        return self
+
+
+class OneSided(Coordinate):
+    """``[[one_sided]]``: one-sided spring with preload -- a tension-only strand or a
+    compression-only support (seed 002 (1)-(2))."""
+
+    k: Positive
+    """Stiffness."""
+    preload: float = 0.0
+    """Element force magnitude at s = 0 (initial tension F0 of a strand)."""
+    side: Literal["tension", "compression"] | None = None
+    """Which side carries load: "tension" (engaged when stretched) or "compression"."""
+
+    @model_validator(mode="after")
+    def _where_given(self):
+        self._require_where()
+        return self
+
+
+class Gap(Coordinate):
+    """``[[gap]]``: clearance/backlash (11.1): no force for lower <= s <= upper, spring k beyond.
+    A lone ``lower`` or ``upper`` is a stop: the spring engaged beyond that bound only.
+    ``law = "arctan"``: the smooth law (11.2) of a symmetric gap."""
+
+    k: Positive
+    """Contact stiffness."""
+    delta: NonNegative | None = None
+    """Half the clearance of a symmetric gap: lower = -delta, upper = delta."""
+    lower: float | None = None
+    """Lower bound of the clearance."""
+    upper: float | None = None
+    """Upper bound of the clearance."""
+    law: Literal["exact", "arctan"] = "exact"
+    """Exact piecewise-linear law (11.1) or the smooth arctan law (11.2)."""
+    L: Positive = 1e3
+    """Sharpness of the arctan law (11.2)."""
+
+    @model_validator(mode="after")
+    def _bounds(self):
+        self._require_where()
+        if self.delta is not None and (self.lower is not None or self.upper is not None):
+            rule("delta", self.delta, "either delta (symmetric) or lower/upper")
+        if self.delta is None and self.lower is None and self.upper is None:
+            rule("delta", None, "delta = .. or lower = .. / upper = .. (the clearance)")
+        if self.lower is not None and self.upper is not None and self.lower > self.upper:
+            rule("lower", self.lower, f"a number <= upper = {self.upper!r}")
+        if self.stop and (self.law != "exact" or self.given("L")):
+            rule("law" if self.law != "exact" else "L", self.law if self.law != "exact" else self.L,
+                 "lower and upper (or delta): the arctan law (11.2) is a symmetric clearance")
+        return self
+
+    @property
+    def stop(self) -> bool:
+        """A lone bound: a one-sided stop."""
+        return self.delta is None and (self.lower is None) != (self.upper is None)
+
+
+class Impact(Coordinate):
+    """``[[impact]]``: rigid unilateral stop s >= stop (side "lower") or s <= stop ("upper") with
+    Newton's restitution."""
+
+    restitution: Fraction
+    """Restitution coefficient e in [0, 1]: s'+ = -e s'-."""
+    stop: float = 0.0
+    """Position of the stop."""
+    side: Literal["lower", "upper"] = "lower"
+    """"lower": s >= stop; "upper": s <= stop."""
+    v_rest: Positive | None = None
+    """Rebound speed below which the bouncing closes into persistent contact (default: relative 1e-9)."""
+
+    @model_validator(mode="after")
+    def _where_given(self):
+        self._require_where()
+        return self
+
+
+class CubicSpring(Coordinate):
+    """``[[cubic_spring]]``: smooth cubic spring, force along s -k3 s^3 (textbook (8.20))."""
+
+    k3: float
+    """Cubic stiffness (hardening for k3 > 0)."""
+
+    @model_validator(mode="after")
+    def _where_given(self):
+        self._require_where()
+        return self
+
+
+class Force(Coordinate):
+    """``[[force]]``: external force along s: value + amplitude sin(omega t + phase) (+ weight)."""
+
+    value: float = 0.0
+    """Constant part."""
+    amplitude: float = 0.0
+    """Harmonic amplitude."""
+    omega: NonNegative = 0.0
+    """Angular frequency, rad/s."""
+    phase: float = 0.0
+    """Phase, rad."""
+    gravity: bool = False
+    """Add the weight -g * inertia of the body ([constants] g)."""
+
+    @model_validator(mode="after")
+    def _law(self):
+        self._require_where()
+        if self.amplitude != 0 and self.omega == 0:
+            rule("omega", self.omega, "a number > 0 with amplitude")
+        if self.gravity and self.body is None:
+            rule("gravity", True, "a body = .. for gravity = true")
+        return self
+
+
+class DistributedFriction(Table):
+    """``[[distributed_friction]]`` (hybrid models): dry friction along the member, lumped at every
+    node with its tributary length (seed 003)."""
+
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name (the nodes' elements are named <name>@x=..)."""
+    dof: str | None = None
+    """DOF the friction acts on (default: the primary field)."""
+    from_: float | None = Field(default=None, alias="from")
+    """Start of the rough zone, m (default 0)."""
+    to: float | None = None
+    """End of the rough zone, m (default: the member's length)."""
+    intensity: NonNegative | None = None
+    """Kinetic friction per length (force or torque per m, e.g. f P / l of seed 003)."""
+    static_intensity: NonNegative | None = None
+    """Static friction per length (default: intensity)."""
+    mu: NonNegative | None = None
+    """Friction coefficient on the model's own weight per length."""
+    radius: Positive | None = None
+    """With mu on a torsion model: radius at which the friction acts, m."""
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.intensity is None) == (self.mu is None):
+            rule("intensity", self.intensity, "either intensity = .. (force or torque per length, e.g. f P / l of "
+                                              "seed 003) or mu = .. (friction coefficient on the model's own weight "
+                                              "per length)")
+        return self
+
+
+ELEMENT_TABLES = {"friction": Friction, "one_sided": OneSided, "gap": Gap, "impact": Impact}
+"""The nonsmooth element tables, in the order the solvers list their elements."""

@@ -1,0 +1,127 @@
+"""``[steady]`` (nonlinear amplitude-frequency curves) and ``[sweep]`` (parameter maps on Dask)."""
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal, Union
+
+from pydantic import Field, model_validator
+
+from .base import Count, Positive, Table, rule
+
+
+class ResponseMeasure(Table):
+    """What the curve shows: a body's coordinate or an element's force along its coordinate."""
+
+    body: Annotated[str, Field(min_length=1)] | None = None
+    """A free body (default: the first free DOF)."""
+    element: Annotated[str, Field(min_length=1)] | None = None
+    """A spring-like element: the magnitude of its force (tension of a strand)."""
+    measure: Literal["amplitude", "max", "min", "peak", "h1"] = "amplitude"
+    """Half peak-to-peak, max, min, max |.|, or the amplitude at the forcing frequency."""
+    scale: Positive = 1.0
+    """The measure is divided by scale (e.g. F0 for a dynamic factor)."""
+
+    @model_validator(mode="after")
+    def _one(self):
+        if self.body is not None and self.element is not None:
+            rule("element", self.element, "not together with body")
+        return self
+
+
+FrequencyRange = Annotated[list[Positive], Field(min_length=2, max_length=2)]
+
+
+class Steady(Table):
+    """``[steady]``: periodic steady states continued in the forcing frequency (every harmonic
+    [[driver]] and [[force]] is set to it)."""
+
+    method: Literal["hb", "shooting"] = "hb"
+    """Harmonic balance with AFT, or shooting with the exact event-driven integrator."""
+    omega: FrequencyRange | None = None
+    """[start, stop] forcing frequency range, rad/s (continued from start to stop)."""
+    z: FrequencyRange | None = None
+    """[start, stop] ratio range z = omega / omega_ref."""
+    omega_ref: Positive | None = None
+    """Reference frequency of z, rad/s."""
+    harmonics: Count = 7
+    """HB: number of harmonics."""
+    subharmonic: Count = 1
+    """Orbits of period subharmonic * 2 pi / omega."""
+    samples: Count | None = None
+    """HB: AFT time samples per period (default max(64, 8 H + 4); at least 4 H + 2)."""
+    regularisation: Positive = 1e-3
+    """HB: friction sign(w) ~ tanh(w / regularisation)."""
+    response: ResponseMeasure = ResponseMeasure()
+    """The plotted response: { body = .. } or { element = .., measure = .., scale = .. }."""
+    stability: bool = True
+    """Floquet multipliers (HB: variational equation; shooting: monodromy)."""
+    ds: Positive = 0.02
+    """Initial arc-length step (scaled)."""
+    ds_max: Positive = 0.1
+    """Largest arc-length step."""
+    ds_min: Positive = 1e-5
+    """Smallest arc-length step (the continuation stops below it)."""
+    max_steps: Count = 2000
+    """Continuation step limit."""
+    steps_per_period: Count = 48
+    """Shooting: step limit of the event-driven integrator per period."""
+
+    @model_validator(mode="after")
+    def _range(self):
+        if (self.omega is None) == (self.z is None):
+            rule("omega", self.omega, "exactly one of omega = [start, stop] (rad/s) or z = [start, stop]")
+        rng = self.omega if self.omega is not None else self.z
+        if rng[0] == rng[1]:
+            rule("omega" if self.omega is not None else "z", rng, "a non-empty range (start != stop)")
+        if self.z is not None and self.omega_ref is None:
+            rule("omega_ref", None, "the reference frequency (rad/s) of z = omega / omega_ref (required key missing)")
+        if self.samples is not None and self.samples < 4 * self.harmonics + 2:
+            rule("samples", self.samples, f"at least 4 harmonics + 2 = {4 * self.harmonics + 2}")
+        return self
+
+    @property
+    def range(self) -> tuple[float, float]:
+        """The frequency range in rad/s."""
+        if self.omega is not None:
+            return float(self.omega[0]), float(self.omega[1])
+        return self.z[0] * self.omega_ref, self.z[1] * self.omega_ref
+
+
+class GridAxis(Table):
+    """A sweep axis as a grid."""
+
+    start: float
+    stop: float
+    points: Count
+    spacing: Literal["linear", "log"] = "linear"
+
+    @model_validator(mode="after")
+    def _log(self):
+        if self.spacing == "log" and (self.start <= 0 or self.stop <= 0):
+            rule("start", self.start, "positive start and stop for spacing = 'log'")
+        return self
+
+
+SweepValue = Union[bool, int, float, str]
+Axis = Union[Annotated[list[SweepValue], Field(min_length=1)], GridAxis]
+
+
+class Sweep(Table):
+    """``[sweep]``: a grid or a list of parameter points, each an independent analysis on Dask.
+    Keys are dotted paths into the model file: ``table.key`` or ``array.NAME.key`` /
+    ``array.INDEX.key`` for arrays of tables."""
+
+    analysis: Literal["steady", "forced", "simulate"] = "steady"
+    """Per point: periodic steady state at the point's frequency, the whole AFC of [steady], or the
+    time simulation."""
+    grid: Annotated[dict[str, Axis], Field(min_length=1)] | None = None
+    """Cartesian product of axes (first key slowest): { "path" = [values] or { start, stop, points } }."""
+    points: Annotated[list[Annotated[dict[str, SweepValue], Field(min_length=1)]], Field(min_length=1)] | None = None
+    """An explicit list of points { "path" = value, .. }."""
+    periods: Count = 300
+    """"steady": at most this many forcing periods of time integration before shooting."""
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.grid is None) == (self.points is None):
+            rule("grid", self.grid, "exactly one of grid = {..} or points = [..]")
+        return self

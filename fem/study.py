@@ -1,0 +1,255 @@
+"""A model file built once, with every analysis its kind supports: the one object the command line,
+the sweeps and the validation catalogue go through (design.md §9).
+
+    study = Study.load("examples/cantilever.toml")      # or Study.parse(dict) / Study(typed_document)
+    study.modal(); study.forced(); study.simulate(); study.steady_model()
+
+Kinds: ``fe`` (linear analyses of a shaft), ``lumped`` and ``hybrid`` (linear analyses, time
+simulation by the event-driven, Moreau-Jean or regularised integrator, nonlinear steady states),
+``drive`` (a drive of regular structure by three representations).
+"""
+from __future__ import annotations
+
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from discrete.errors import ModelError
+
+from . import modelfile
+from .modelfile import budget
+from .modelfile.build import drive as build_drive
+from .modelfile.build import fe as build_fe
+from .modelfile.build import hybrid as build_hybrid
+from .modelfile.build import linear as build_linear
+from .modelfile.build import lumped as build_lumped
+from .modelfile.build.steady import steady_settings
+from .modelfile.load import kind_of
+from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
+
+DEFAULT_MODES = 6
+
+
+class Study:
+    """One model file, validated once, built lazily, analysed by its kind."""
+
+    def __init__(self, doc, path: Path | None = None):
+        self.doc = doc
+        self.kind = kind_of(doc)
+        self.path = path
+        budget.check_document(doc, self.kind)
+
+    @classmethod
+    def load(cls, path) -> "Study":
+        return cls(modelfile.load(path), Path(path))
+
+    @classmethod
+    def parse(cls, doc: dict) -> "Study":
+        return cls(modelfile.parse(doc))
+
+    @property
+    def title(self) -> str:
+        return self.doc.title or (self.path.stem if self.path else "")
+
+    @property
+    def analysis(self):
+        return self.doc.analysis
+
+    def _need(self, *kinds: str, what: str) -> None:
+        if self.kind not in kinds:
+            raise ModelError(f"model file ({self.kind})", "kind", self.kind,
+                             f"a {' or '.join(kinds)} model for {what}")
+
+    # ------------------------------------------------------------ built models (once)
+    @cached_property
+    def shaft(self):
+        self._need("fe", "hybrid", what="an FE shaft")
+        return build_fe.shaft_model(self.doc)
+
+    @cached_property
+    def fe_model(self):
+        """The assembled FE model (FE files; hybrid files: their FE part)."""
+        if self.kind == "hybrid":
+            return self.hybrid.fe
+        from .assembly import assemble
+
+        self._need("fe", what="an FE model")
+        return assemble(self.shaft)
+
+    @cached_property
+    def lumped(self):
+        self._need("lumped", what="a lumped model")
+        return build_lumped.lumped_model(self.doc)
+
+    @cached_property
+    def hybrid(self):
+        self._need("hybrid", what="a hybrid model")
+        return build_hybrid.hybrid_model(self.doc)
+
+    @cached_property
+    def compiled(self):
+        """The hybrid problem: the (reduced) FE system plus bodies and elements."""
+        from .hybrid import compile_hybrid
+
+        return compile_hybrid(self.hybrid)
+
+    @cached_property
+    def drive(self):
+        self._need("drive", what="a drive of regular structure")
+        return build_drive.drive_model(self.doc)
+
+    def linear_system(self):
+        """The linear part: FE assembled, lumped with gears eliminated, hybrid compiled."""
+        if self.kind == "fe":
+            return self.fe_model.system
+        if self.kind == "lumped":
+            return self._lumped_system
+        if self.kind == "hybrid":
+            return self.compiled.system
+        raise ModelError("model file (drive)", "drive", "...", "the drive analyses (modal, forced, compare)")
+
+    @cached_property
+    def _lumped_system(self):
+        return self.lumped.linear_system()
+
+    def problem_spec(self, t_end: float | None = None):
+        """The nonsmooth problem without its forcing frequency fixed (lumped and hybrid)."""
+        if self.kind == "lumped":
+            return build_lumped.problem_spec(self.doc, t_end)
+        self._need("hybrid", what="a nonsmooth problem")
+        return self.compiled.spec()
+
+    # ------------------------------------------------------------ analyses
+    def modal_count(self, n_modes: int | None = None) -> int:
+        """Modes asked for (argument, then [analysis] modes, then 6 capped at the free DOFs)."""
+        an = self.analysis
+        if n_modes is None and an is not None and an.modes is not None:
+            n_modes = an.modes
+        if n_modes is not None:
+            return n_modes
+        if self.kind == "drive":
+            return min(DEFAULT_MODES, 2 * self.drive.n)
+        return max(1, min(DEFAULT_MODES, self.linear_system().n_free))
+
+    def modal(self, n_modes: int | None = None, shift: float | None = None):
+        """Natural frequencies and mode shapes (drive files: by their representation)."""
+        if self.kind == "drive":
+            from .drives import modal as drive_modal
+
+            self._drive_delta()
+            return drive_modal(self.drive, self.modal_count(n_modes))
+        from discrete.linear import modal_analysis
+
+        an = self.analysis
+        tol = an.tolerance if isinstance(an, ModalAnalysis) else 1e-5
+        if shift is None and isinstance(an, ModalAnalysis):
+            shift = an.shift
+        return modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+
+    def is_steady(self) -> bool:
+        """Whether ``forced`` means the nonlinear amplitude-frequency curve of ``[steady]``."""
+        return getattr(self.doc, "steady", None) is not None
+
+    def forced(self):
+        """Harmonic response (linear models), the AFC of [steady] (nonlinear), or the drive's response."""
+        an = self.analysis
+        if self.is_steady():
+            from discrete.steady import afc
+
+            return afc(self.steady_model())
+        if not isinstance(an, ForcedAnalysis):
+            raise ModelError("[analysis]", "type", getattr(an, "type", None), "'forced' for drivefem forced")
+        if self.kind == "drive":
+            from .drives import forced as drive_forced
+
+            delta, name = self._drive_delta()
+            return drive_forced(self.drive, build_linear.frequencies(an), delta=delta, damping_name=name)
+        if self.kind == "hybrid":
+            raise ModelError("[analysis]", "type", "forced", "a [steady] table for the forced response of a hybrid "
+                             "model (the linear harmonic analysis of FE and lumped files takes [[load]] tables)")
+        from discrete.linear import harmonic_response
+
+        system = self.linear_system()
+        spec = build_linear.forced_spec(self.doc, system)
+        return harmonic_response(system, spec.omegas, force=spec.force, base_motion=spec.base_motion,
+                                 damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
+                                 method=spec.method, n_modes=spec.n_modes)
+
+    def _drive_delta(self) -> tuple[float, str]:
+        d = self.doc.damping
+        kind = "none" if d is None or d.kind == "viscous" else d.kind
+        if kind not in ("none", "hysteretic"):
+            raise ModelError("[damping]", "type", kind, "'none' | 'hysteretic' for a drive of regular structure")
+        if kind == "none":
+            return 0.0, "undamped"
+        delta = d.psi / (4 * np.pi)
+        return delta, f"hysteretic psi = {d.psi:g} (c (1 + 2 i delta), delta = {delta:.6g}) on shaft and mechanism springs"
+
+    def compare(self):
+        """Drive files: the three representations, the closed forms and the convergence in n."""
+        from .drives import compare_model
+
+        self._drive_delta()
+        conv = getattr(self.analysis, "convergence_n", None)
+        if conv is not None and self.drive.boundary == "free-free" and min(conv) < 2:
+            raise ModelError("[analysis]", "convergence_n", conv, "integers >= 2 for a free-free drive")
+        return compare_model(self.drive, convergence_n=conv)
+
+    def simulation_settings(self) -> dict:
+        sim = getattr(self.doc, "simulation", None)
+        if sim is None:
+            raise ModelError(f"model file ({self.kind})", "simulation", None,
+                             "a table [simulation] with t_end = .. (required for drivefem simulate)")
+        return {"t_end": sim.t_end, "method": sim.method, **sim.options()}
+
+    def simulate(self):
+        """Time simulation by the method of [simulation] (lumped and hybrid files)."""
+        settings = self.simulation_settings()
+        t_end, method = settings["t_end"], settings["method"]
+        spp = settings.get("steps_per_period", 12)
+        if self.kind == "hybrid":
+            from .hybrid import run
+
+            m = self.hybrid
+            if not m.elements and not m.forces and not m.drivers and not m.initial_velocity:
+                raise ModelError("model file", "friction", None, "at least one nonsmooth element, [[force]], "
+                                 "[[driver]] or [initial] velocity for a simulation")
+            if method != "moreau":
+                budget.check_time_integration(t_end, self.compiled.problem.omega_max, spp, method)
+            return run(m, settings, compiled=self.compiled)
+        self._need("lumped", what="drivefem simulate")
+        from discrete.nonsmooth import simulate_spec
+
+        spec = self.problem_spec(t_end)
+        problem = spec.problem() if method != "moreau" else None
+        if problem is not None:
+            budget.check_time_integration(t_end, problem.omega_max, spp, method)
+        return simulate_spec(spec, t_end, method, settings, problem=problem)
+
+    def steady_model(self):
+        """The steady-state model of [steady] (lumped and hybrid files)."""
+        from discrete.steady import SteadyModel
+
+        if getattr(self.doc, "steady", None) is None:
+            raise ModelError(f"model file ({self.kind})", "steady", None, "a [steady] table")
+        sm = SteadyModel(self.problem_spec(), steady_settings(self.doc.steady))
+        if sm.cfg.method == "hb":
+            budget.check_hb(sm.system.n, sm.cfg.harmonics)
+        return sm
+
+
+# ------------------------------------------------------------ one-call helpers for model dicts
+def simulate(doc: dict):
+    """Time simulation of a model given as a dict (as from TOML)."""
+    return Study.parse(doc).simulate()
+
+
+def forced(doc: dict):
+    """Forced response (linear, drive, or the nonlinear curve of [steady]) of a model dict."""
+    return Study.parse(doc).forced()
+
+
+def steady_model(doc: dict):
+    """The steady-state model of a model dict with a [steady] table."""
+    return Study.parse(doc).steady_model()
