@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..linalg.expm import expm_batch
 from ..errors import SolverError
 
 
@@ -169,28 +170,12 @@ def floquet_hb(model: HBModel, X, omega, steps: int | None = None):
     A[:, :n, n:] = np.eye(n)
     A[:, n:, :n] = -np.einsum("ij,jkm->mik", Minv, s.K[:, :, None] - Fq)
     A[:, n:, n:] = -np.einsum("ij,jkm->mik", Minv, s.C[:, :, None] - Fv)
-    E = _expm_batch(A * (T / M))
+    E = expm_batch(A * (T / M))
     while E.shape[0] > 1:           # ordered product E[M-1] ... E[1] E[0]
         if E.shape[0] % 2:
             E = np.concatenate([E, np.eye(2 * n)[None]], axis=0)
         E = E[1::2] @ E[0::2]
     return np.linalg.eigvals(E[0])
-
-
-def _expm_batch(A):
-    """exp of a batch of small matrices (b, m, m): one common scaling 2^-s to norm <= 1/8, Taylor to
-    degree 12 (truncation < 1e-19), s squarings; all numpy-vectorised over the batch."""
-    m = A.shape[-1]
-    nrm = float(np.max(np.sum(np.abs(A), axis=-2))) if A.size else 0.0
-    sq = max(0, int(np.ceil(np.log2(nrm / 0.125)))) if nrm > 0.125 else 0
-    B = A / 2.0 ** sq
-    I = np.broadcast_to(np.eye(m), A.shape)
-    E = I.copy()
-    for k in range(12, 0, -1):          # Horner: I + B/1 (I + B/2 (I + ...))
-        E = I + (B @ E) / k
-    for _ in range(sq):
-        E = E @ E
-    return E
 
 
 def backbone(model: HBModel, A: float, omega0: float, X0=None, tol=1e-12, maxit=50):
