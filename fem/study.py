@@ -34,6 +34,9 @@ DEFAULT_MODES = 6
 class Study:
     """One model file, validated once, built lazily, analysed by its kind."""
 
+    damping_report = None
+    """How psi became viscous damping in the last time-domain analysis (None: no psi)."""
+
     def __init__(self, doc, path: Path | None = None):
         self.doc = doc
         self.kind = kind_of(doc)
@@ -215,6 +218,7 @@ class Study:
             if not m.elements and not m.forces and not m.drivers and not m.initial_velocity:
                 raise ModelError("model file", "friction", None, "at least one nonsmooth element, [[force]], "
                                  "[[driver]] or [initial] velocity for a simulation")
+            self.damping_report = self.compiled.damping_report
             if method != "moreau":
                 budget.check_time_integration(t_end, self.compiled.problem.omega_max, spp, method)
             return run(m, settings, compiled=self.compiled)
@@ -222,6 +226,7 @@ class Study:
         from discrete.nonsmooth import simulate_spec
 
         spec = self.problem_spec(t_end)
+        self.damping_report = spec.damping_report
         problem = spec.problem() if method != "moreau" else None
         if problem is not None:
             budget.check_time_integration(t_end, problem.omega_max, spp, method)
@@ -233,7 +238,9 @@ class Study:
 
         if getattr(self.doc, "steady", None) is None:
             raise ModelError(f"model file ({self.kind})", "steady", None, "a [steady] table")
-        sm = SteadyModel(self.problem_spec(), steady_settings(self.doc.steady))
+        spec = self.problem_spec()
+        self.damping_report = spec.damping_report
+        sm = SteadyModel(spec, steady_settings(self.doc.steady))
         if sm.cfg.method == "hb":
             budget.check_hb(sm.system.n, sm.cfg.harmonics)
         return sm

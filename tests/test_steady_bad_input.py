@@ -56,12 +56,7 @@ def test_cubic_bad():
         forced(d)
 
 
-def test_shooting_refuses_cubic_and_hb_refuses_impact():
-    d = copy.deepcopy(BASE)
-    d["cubic_spring"] = [{"between": ["ground", "m"], "k3": 1.0}]
-    d["steady"]["method"] = "shooting"
-    with pytest.raises(ModelError, match="hb"):
-        forced(d)
+def test_hb_refuses_impact():
     d = copy.deepcopy(BASE)
     d["impact"] = [{"name": "stop", "body": "m", "stop": -1.0, "restitution": 0.8}]
     with pytest.raises(ModelError, match="shooting"):

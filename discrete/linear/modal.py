@@ -41,6 +41,7 @@ from ..linear_system import LinearSystem
 from ..linalg.blas import single_threaded_blas
 from ..linalg.seeded import seeded_eigenpairs
 from ..linalg.shifted import ShiftedSolver, is_diagonal
+from ..linalg.sparse_direct import SingularMatrixError, factorize
 
 EPS = np.finfo(float).eps
 
@@ -59,6 +60,7 @@ class ModalResult:
     shift: float
     tolerance: float
     warnings: list[str] = field(default_factory=list)
+    linear_solver: str = ""         # the sparse factorisation of the shift-invert (discrete.linalg.sparse_direct)
 
     @property
     def frequencies_hz(self) -> np.ndarray:
@@ -85,6 +87,7 @@ class ModalResult:
             "reliable": self.reliable.tolist(),
             "rigid_body_modes": self.rigid_body_modes,
             "method": self.method,
+            "linear_solver": self.linear_solver,
             "shift": self.shift,
             "warnings": list(self.warnings),
         }
@@ -124,19 +127,22 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     # eps*lam_max in absolute terms, so it is used only for tiny systems or when (almost)
     # all modes are wanted, which ARPACK cannot deliver.
     notes = []
+    solver = ""
     if (n <= dense_max or n_modes >= n - 1) and _is_positive_definite(M):
         lam, vec = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, n_modes - 1])
         method, sigma = "dense eigh(K, M)", 0.0
     elif seeds is not None and not n_rigid:
         if shift is not None:
             notes.append(f"shift = {shift!r} not used: the seeded solver places its own shifts at the seeds")
-        lam, vec, sigma, method, more = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max, rigid_level)
+        lam, vec, sigma, method, more, solver = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max,
+                                                                   rigid_level)
         notes += more
     else:
         if seeds is not None:
             notes.append("seeds not used: the system has rigid-body modes (shift-invert Lanczos instead)")
-        lam, vec, sigma = _shift_invert(K, M, n_modes, shift, lam_max, rigid_level, n_rigid)
-        method = "sparse shift-invert Lanczos (eigsh)"
+        lam, vec, sigma, lu = _shift_invert(K, M, n_modes, shift, lam_max, rigid_level, n_rigid)
+        method, solver = f"sparse shift-invert Lanczos (eigsh, {lu.name})", lu.name
+        notes += lu.notes
     order = np.argsort(lam)
     if np.any(order != np.arange(lam.size)):
         lam, vec = lam[order], vec[:, order]
@@ -165,7 +171,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     omega[rigid] = 0.0
     result = ModalResult(omega_rad_s=omega, eigenvalues=lam, shapes=system.expand(vec), residuals=residuals,
                          rayleigh_rel_diff=rq_diff, precision_bound=bound, rigid=rigid, n_dofs=n,
-                         method=method, shift=float(sigma), tolerance=tolerance)
+                         method=method, shift=float(sigma), tolerance=tolerance, linear_solver=solver)
     result.warnings.extend(notes)
     if rigid.any():
         result.warnings.append(f"{int(rigid.sum())} rigid-body mode(s) (free system): reported with omega = 0")
@@ -193,7 +199,7 @@ def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
     else:
         notes = [] if sol.contamination.max() < 1e-6 else [
             f"seeded solver: vectors contaminated up to {sol.contamination.max():.1e} by neighbouring modes"]
-        return sol.eigenvalues, sol.vectors, float(np.min(seeds)), sol.describe(), notes
+        return sol.eigenvalues, sol.vectors, float(np.min(seeds)), sol.describe(), notes, ""
     sigma = 0.99 * float(np.min(seeds))
     try:
         counter = ShiftedSolver(K, M)
@@ -205,8 +211,8 @@ def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
             sigma = None
     except SolverError:
         sigma = None                      # no count: the default shift (K itself)
-    lam, vec, sigma = _shift_invert(K, M, k, sigma, lam_max, rigid_level, 0)
-    return lam, vec, sigma, "sparse shift-invert Lanczos (eigsh)", [note]
+    lam, vec, sigma, lu = _shift_invert(K, M, k, sigma, lam_max, rigid_level, 0)
+    return lam, vec, sigma, f"sparse shift-invert Lanczos (eigsh, {lu.name})", [note] + lu.notes, lu.name
 
 
 def _norm1(A: sp.spmatrix) -> float:
@@ -223,13 +229,13 @@ def _is_positive_definite(M: sp.spmatrix) -> bool:
 
 
 def _factor(A: sp.spmatrix):
-    """Sparse LU of A and the ratio of its smallest to largest pivot (None if exactly singular)."""
+    """Sparse factorisation of the symmetric A (:mod:`discrete.linalg.sparse_direct`: MKL PARDISO's
+    LDL^T for large matrices where installed, else SuperLU's LU), None if A is exactly singular.
+    Its ``pivot_ratio`` (smallest to largest pivot) is computed on first use."""
     try:
-        lu = spla.splu(sp.csc_matrix(A))
-    except RuntimeError:
-        return None, 0.0
-    piv = np.abs(lu.U.diagonal())
-    return lu, float(piv.min() / piv.max())
+        return factorize(A)
+    except SingularMatrixError:
+        return None
 
 
 def _eigsh(K, M, k, sigma, lu, tol=0.0):
@@ -248,25 +254,25 @@ def _shift_invert(K, M, k, shift, lam_max, rigid_level, n_rigid):
     if k >= K.shape[0]:
         raise ModelError("[analysis]", "modes", k, f"fewer than {K.shape[0]} for the sparse solver")
     if shift is not None:
-        lu, _ = _factor(K - shift * M)
+        lu = _factor(K - shift * M)
         if lu is None:
             raise SolverError(f"K - sigma M is singular at the requested shift {shift}: choose another shift")
         lam, vec = _eigsh(K, M, k, shift, lu)
-        return lam, vec, shift
-    lu, pivot_ratio = _factor(K) if n_rigid in (0, None) else (None, 0.0)
-    if lu is not None and (n_rigid == 0 or pivot_ratio > 1e3 * EPS):
+        return lam, vec, shift, lu
+    lu = _factor(K) if n_rigid in (0, None) else None
+    if lu is not None and (n_rigid == 0 or lu.pivot_ratio > 1e3 * EPS):
         lam, vec = _eigsh(K, M, k, 0.0, lu)
-        return lam, vec, 0.0
+        return lam, vec, 0.0, lu
     # Free (or nearly free) system: rigid-body modes.  First pass with a small negative
     # shift, then re-shift to a fraction of the lowest flexible eigenvalue found.
     tau = 1e-8 * lam_max
-    lu, _ = _factor(K + tau * M)
+    lu = _factor(K + tau * M)
     lam, vec = _eigsh(K, M, k, -tau, lu, tol=1e-8)
     flexible = lam[lam > rigid_level]
     if flexible.size and 1e-2 * flexible.min() < tau:
         tau = max(1e-2 * flexible.min(), 10 * rigid_level)
-        lu, _ = _factor(K + tau * M)
+        lu = _factor(K + tau * M)
         lam, vec = _eigsh(K, M, k, -tau, lu)
     else:
         lam, vec = _eigsh(K, M, k, -tau, lu)
-    return lam, vec, -tau
+    return lam, vec, -tau, lu

@@ -118,7 +118,8 @@ def _rigid_free(system: LinearSystem, tol: float = 1e-9) -> np.ndarray:
     that K_ff does not strain.  Unknown rigid modes (None): K_ff must be regular."""
     Kf = system.free_block(system.K)
     if system.rigid_modes is None:
-        lu, ratio = _factor(Kf)
+        lu = _factor(Kf)
+        ratio = 0.0 if lu is None else lu.pivot_ratio
         if lu is None or ratio <= 1e3 * EPS:
             raise SolverError(f"reduction: K_ff is singular (smallest/largest LU pivot {ratio:.1e}): the structure "
                               "floats, but its rigid-body modes are unknown (LinearSystem.rigid_modes = None); give "

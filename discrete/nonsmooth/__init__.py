@@ -7,7 +7,7 @@ Entry points: :func:`simulate` (any :class:`~discrete.linear_system.LinearSystem
 :class:`Problem`), :func:`simulate_spec` (one entry for the event, Moreau-Jean and regularised
 integrators); model files go through :mod:`fem.modelfile`.
 """
-from .elements import Friction, Gap, Impact, OneSided
+from .elements import ELEMENT_TYPES, Cubic, Element, Friction, Gap, Impact, OneSided
 from .methods import simulate_spec
 from .periodic import detect_period
 from .problem import ExternalForce, MotionLaw, Problem, ProblemSpec
@@ -16,5 +16,5 @@ from .result import Event, SimulationResult
 from .solver import Options, simulate
 
 __all__ = ["simulate_spec", "ProblemSpec", "simulate", "simulate_regularised", "Options",
-           "Problem", "MotionLaw", "ExternalForce", "Friction", "OneSided", "Gap", "Impact", "SimulationResult",
+           "Problem", "MotionLaw", "ExternalForce", "Element", "ELEMENT_TYPES", "Friction", "OneSided", "Gap", "Impact", "Cubic", "SimulationResult",
            "Event", "detect_period"]

@@ -19,7 +19,6 @@ import numpy as np
 
 from ..errors import ModelError
 from ..linear_system import LinearSystem
-from .elements import Friction, Gap, Impact, OneSided
 
 
 @dataclass
@@ -132,7 +131,7 @@ class Problem:
         # a time scale: highest natural frequency of the linear part (for step limits)
         try:
             lam = np.linalg.eigvals(np.linalg.solve(self.M0, self.K + sum(
-                el.k * np.outer(gf, gf) for el, gf in zip(self.elements, self.gf) if isinstance(el, (OneSided, Gap)))))
+                el.stiffness() * np.outer(gf, gf) for el, gf in zip(self.elements, self.gf) if el.stiffness() > 0)))
             self.omega_max = float(np.sqrt(np.max(np.abs(lam)))) if lam.size else 0.0
         except np.linalg.LinAlgError:
             self.omega_max = 0.0
@@ -161,8 +160,7 @@ class Problem:
         return self.gf[i] @ q + self.ge[i] @ e, self.gf[i] @ v + self.gve[i] @ e
 
     def constraint_rows(self, mode):
-        return [i for i, el in enumerate(self.elements)
-                if (isinstance(el, Friction) and mode[i] == 0) or (isinstance(el, Impact) and mode[i] == 1)]
+        return [i for i, el in enumerate(self.elements) if el.is_constraint(mode[i])]
 
     def mode_affine(self, mode) -> bool:
         return self.time_invariant and self.affine
@@ -186,20 +184,9 @@ class Problem:
         rhs = -self.K @ q - (self.C + self.Cr) @ v - self.B @ e + self.Fx @ e
         for i, el in enumerate(self.elements):
             s[i], sd[i] = self.coords(i, q, v, e)
-            md = mode[i]
-            if isinstance(el, Friction):
-                if md != 0:
-                    F[i] = el.slip_force(md, sd[i] - el.surface_velocity * e0, e0, t)
-            elif isinstance(el, OneSided):
-                if md == 1:
-                    F[i] = -el.k * (s[i] - el.s_open * e0)
-            elif isinstance(el, Gap):
-                if el.law == "arctan":
-                    F[i] = el.smooth_force(s[i])
-                elif md == 1:
-                    F[i] = -el.k * (s[i] - el.upper * e0)
-                elif md == -1:
-                    F[i] = -el.k * (s[i] - el.lower * e0)
+            f = el.force(mode[i], s[i], sd[i], e0, t)
+            if f is not None:
+                F[i] = f
             rhs += np.outer(self.gf[i], F[i])
         Mt = self.mass(t)
         rows = self.constraint_rows(mode)
@@ -221,40 +208,9 @@ class Problem:
             a = np.linalg.solve(Mt, rhs)
         guards, tags = [], []
         for i, el in enumerate(self.elements):
-            md = mode[i]
-            if isinstance(el, Friction):
-                fk, fs = el.levels(t)
-                if md != 0:
-                    guards.append(md * (sd[i] - el.surface_velocity * e0))
-                    tags.append((i, "stop"))
-                else:
-                    guards.append(fs * e0 - F[i])
-                    tags.append((i, "break-"))
-                    guards.append(fs * e0 + F[i])
-                    tags.append((i, "break+"))
-            elif isinstance(el, OneSided):
-                d = el.side * (s[i] - el.s_open * e0)
-                guards.append(d if md == 1 else -d)
-                tags.append((i, "open" if md == 1 else "close"))
-            elif isinstance(el, Gap) and el.law == "exact":
-                if md == 1:
-                    guards.append(s[i] - el.upper * e0)
-                    tags.append((i, "leave"))
-                elif md == -1:
-                    guards.append(el.lower * e0 - s[i])
-                    tags.append((i, "leave"))
-                else:
-                    guards.append(el.upper * e0 - s[i])
-                    tags.append((i, "close+"))
-                    guards.append(s[i] - el.lower * e0)
-                    tags.append((i, "close-"))
-            elif isinstance(el, Impact):
-                if md == 0:
-                    guards.append(s[i] - el.s_min * e0)
-                    tags.append((i, "hit"))
-                else:
-                    guards.append(F[i].copy())
-                    tags.append((i, "release"))
+            for value, tag in el.guards(mode[i], s[i], sd[i], F[i], e0, t):
+                guards.append(value)
+                tags.append((i, tag))
         g = np.array(guards) if guards else np.zeros((0, m))
         return {"a": a, "F": F, "lam": lam, "s": s, "sd": sd, "guards": g, "tags": tags, "rows": rows}
 
@@ -276,7 +232,7 @@ class Problem:
         Mt = self.mass(t)
         E = 0.5 * np.einsum("im,ij,jm->m", v, Mt, v) + 0.5 * np.einsum("im,ij,jm->m", x, self.Kfull, x)
         for i, el in enumerate(self.elements):
-            if isinstance(el, (OneSided, Gap)) and not (isinstance(el, Gap) and el.law == "arctan"):
+            if el.has_potential:
                 s = self.gf[i] @ q + self.ge[i] @ e
                 E = E + el.potential(s, mode[i])
         return E
@@ -293,7 +249,7 @@ class Problem:
         * ``variable_mass``: reactive and mass-change terms of seed 004, (1/2 - eps) delta v^2;
         * ``external``: [[force]] tables;
         * ``friction``: friction forces (slip and stick) on the free DOFs;
-        * ``elements``: smooth (arctan) gaps, counted as work since they have no potential here;
+        * ``elements``: elements without a potential (the smooth arctan gap), counted as work;
         * ``contacts``: constraint forces of persistent contacts (zero for fixed stops).
         """
         x, xd = self.full_state(q, v, e)
@@ -310,15 +266,11 @@ class Problem:
                                 + 0.5 * np.einsum("im,ij,jm->m", v, self.Mdot, v))
         out["external"] = np.einsum("im,im->m", v, self.Fx @ e)
         for i, el in enumerate(self.elements):
-            vf = self.gf[i] @ v
-            if isinstance(el, (OneSided, Gap)) and not (isinstance(el, Gap) and el.law == "arctan"):
-                out["drivers"] = out["drivers"] - F[i] * (self.gve[i] @ e)   # conservative element on drivers
-            elif isinstance(el, Friction):
-                out["friction"] = out["friction"] + F[i] * vf
-            elif isinstance(el, Impact):
-                out["contacts"] = out["contacts"] + F[i] * vf
-            else:
-                out["elements"] = out["elements"] + F[i] * vf
+            Fc, Fn = el.split_force(mode[i], sd[i], F[i])
+            if Fc is not None:       # a potential moved by the drivers: their work
+                out["drivers"] = out["drivers"] - Fc * (self.gve[i] @ e)
+            if Fn is not None:       # the rest of the force: work of its category on the free DOFs
+                out[el.work] = out[el.work] + Fn * (self.gf[i] @ v)
         return out
 
     def power(self, t, q, v, e, mode, F, sd):
@@ -339,7 +291,7 @@ class ProblemSpec:
     reactive: object = None
     x0: np.ndarray | None = None
     v0: np.ndarray | None = None
-    cubics: list = field(default_factory=list)     # smooth cubic springs (steady state only)
+    damping_report: object = None        # how psi became viscous damping (discrete.linear.dissipation)
 
     def problem(self, omega: float | None = None) -> Problem:
         """The Problem, every harmonic driver and force at ``omega`` (None: as given)."""

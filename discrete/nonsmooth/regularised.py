@@ -22,77 +22,39 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import SolverError
-from .elements import Friction, Gap, Impact, OneSided
 from .problem import Problem
 from .result import SimulationResult
 
 
-def _restitution_zeta(e: float) -> float:
-    if e >= 1:
-        return 0.0
-    if e <= 0:
-        return 1.0
-    le = -math.log(e)
-    return le / math.sqrt(math.pi ** 2 + le ** 2)
-
-
 def regularised_rhs(prob: Problem, regularisation: float, penalty: float | None, memory_time: float):
-    """Right-hand side f(t, y) of the regularised model, y = [q, v, zeta_1..zeta_nfric]."""
+    """Right-hand side f(t, y) of the regularised model, y = [q, v, memory states of the elements]
+    (the elements with memory -- friction's rest memory -- come first, as their states)."""
     nf = prob.nf
-    fr = [i for i, el in enumerate(prob.elements) if isinstance(el, Friction)]
-    eps = regularisation
-    eps_m = 20.0 * eps
-    tau_f = memory_time / 100.0
+    order = sorted(range(len(prob.elements)), key=lambda i: prob.elements[i].n_memory == 0)
+    slots, k = {}, 0
+    for i in order:
+        slots[i] = slice(k, k + prob.elements[i].n_memory)
+        k += prob.elements[i].n_memory
+    settings = {"eps": regularisation, "eps_m": 20.0 * regularisation, "tau": memory_time,
+                "tau_f": memory_time / 100.0, "penalty": penalty}
 
     def fun(t, y):
         q, v = y[:nf], y[nf:2 * nf]
-        zeta = y[2 * nf:]
+        memory = y[2 * nf:]
         e = prob.basis(t)
         rhs = -prob.K @ q - (prob.C + prob.Cr) @ v - prob.B @ e + prob.Fx @ e
-        dz = np.zeros(len(fr))
-        for k, i in enumerate(fr):
+        dz = np.zeros(k)
+        for i in order:
             el = prob.elements[i]
-            w = prob.gf[i] @ v + prob.gve[i] @ e - el.surface_velocity
-            fk, fs = el.levels(t)
-            rest = 1.0 / (1.0 + (w / eps_m) ** 8)
-            if el.restick == "kinetic":
-                z = zeta[k]
-                dz[k] = rest * (1.0 - z) / memory_time - (1.0 - rest) * z / tau_f
-            else:
-                z = rest
-            F = -(fk + (fs - fk) * z) * math.tanh(w / eps) - el.viscous * w - el.quadratic * w * abs(w) \
-                - el.cubic * w * w * w
-            rhs = rhs + prob.gf[i] * F
-        for i, el in enumerate(prob.elements):
-            if isinstance(el, Friction):
-                continue
-            s = prob.gf[i] @ q + prob.ge[i] @ e
-            F = 0.0
-            if isinstance(el, OneSided):
-                if el.side * (s - el.s_open) > 0:
-                    F = -el.k * (s - el.s_open)
-            elif isinstance(el, Gap):
-                if el.law == "arctan":
-                    F = float(el.smooth_force(s))
-                elif s > el.upper:
-                    F = -el.k * (s - el.upper)
-                elif s < el.lower:
-                    F = -el.k * (s - el.lower)
-            elif isinstance(el, Impact):
-                if penalty is None:
-                    raise SolverError(f"impact {el.name!r} needs [simulation] penalty = stiffness for the "
-                                      "regularised method")
-                if s < el.s_min:
-                    sd = prob.gf[i] @ v + prob.gve[i] @ e
-                    m_eff = 1.0 / (prob.gf[i] @ np.linalg.solve(prob.mass(t), prob.gf[i]))
-                    c = 2 * _restitution_zeta(el.restitution) * math.sqrt(penalty * m_eff)
-                    F = -penalty * (s - el.s_min) - c * sd
+            settings["effective_mass"] = lambda i=i: 1.0 / (prob.gf[i] @ np.linalg.solve(prob.mass(t), prob.gf[i]))
+            s_, sd = prob.gf[i] @ q + prob.ge[i] @ e, prob.gf[i] @ v + prob.gve[i] @ e
+            F, d = el.regularised_force(s_, sd, t, memory[slots[i]], settings)
+            dz[slots[i]] = d
             rhs = rhs + prob.gf[i] * F
         a = np.linalg.solve(prob.mass(t), rhs)
         return np.concatenate([v, a, dz])
 
-    return fun, len(fr)
+    return fun, k
 
 
 def simulate_regularised(prob: Problem, t_end: float, regularisation: float | None = None,

@@ -45,6 +45,8 @@ class TimeHistory:
     reason: str = ""
     elements: list[str] = field(default_factory=list)
     driven: list[str] = field(default_factory=list)     # DOFs with prescribed motion (drivers)
+    element_forces: np.ndarray | None = None            # (n_elements, n_times): force along s of every
+    #                                                     element at the recorded instants (None: not recorded)
 
     def events_of(self, kind: str | None = None, element: str | None = None) -> list[Event]:
         return [e for e in self.events if (kind is None or e.kind == kind) and (element is None or e.element == element)]

@@ -22,7 +22,6 @@ from scipy.integrate import solve_ivp
 
 from ..errors import SolverError
 from ..linalg.expm import expm_small as _expm
-from .elements import Friction, Gap, Impact, OneSided
 from .periodic import detect_period, detect_period_smooth
 from .problem import Problem
 from .result import Event, SimulationResult
@@ -108,7 +107,7 @@ class EventDrivenSolver:
                    1e-300)
         tol = {}
         for i, el in enumerate(p.elements):
-            if isinstance(el, Impact):
+            if el.unilateral:
                 g = p.gf[i]
                 meff = 1.0 / float(g @ np.linalg.solve(p.M0, g)) if np.any(g) else 0.0
                 tol[i] = self.o.contact_tol * meff * max(getattr(p, "omega_max", 0.0), 1e-300) * vref
@@ -156,19 +155,13 @@ class EventDrivenSolver:
             out = self._eval(t, z, mode)
             worst, wi = 0.0, None
             for i in out["rows"]:
-                el = self.p.elements[i]
                 lam = out["F"][i, 0]
-                if isinstance(el, Friction):
-                    lim = limits.get(i, el.levels(t)[1])
-                    excess = (abs(lam) - lim) / max(lim, abs(lam) * 1e-12, 1e-300)
-                else:
-                    excess = -lam / max(abs(lam), 1e-300) if lam < -self._contact_ftol.get(i, 0.0) else -1.0
+                excess = self.p.elements[i].constraint_excess(lam, t, limits.get(i), self._contact_ftol.get(i, 0.0))
                 if excess > 1e-12 and excess > worst:
                     worst, wi = excess, i
             if wi is None:
                 return mode, out
-            lam = out["F"][wi, 0]
-            mode[wi] = (-int(np.sign(lam)) or 1) if isinstance(self.p.elements[wi], Friction) else 0
+            mode[wi] = self.p.elements[wi].released_mode(out["F"][wi, 0])
             limits.pop(wi, None)
         raise SolverError(f"could not find a consistent contact/stick mode at t = {t!r}")
 
@@ -179,25 +172,7 @@ class EventDrivenSolver:
         scale_v = max(1e-300, np.max(np.abs(v)) if v.size else 0.0, abs(e[1]) if e.size > 1 else 0.0)
         for i, el in enumerate(p.elements):
             s, sd = p.gf[i] @ q + p.ge[i] @ e, p.gf[i] @ v + p.gve[i] @ e
-            if isinstance(el, Friction):
-                w = sd - el.surface_velocity
-                mode.append(0 if abs(w) <= 1e-14 * max(scale_v, abs(el.surface_velocity), 1.0) else int(np.sign(w)))
-            elif isinstance(el, OneSided):
-                d = el.side * (s - el.s_open)
-                mode.append(1 if d > 0 or (d == 0 and el.side * sd > 0) else 0)
-            elif isinstance(el, Gap):
-                if el.law == "arctan":
-                    mode.append(0)
-                elif s > el.upper or (s == el.upper and sd > 0):
-                    mode.append(1)
-                elif s < el.lower or (s == el.lower and sd < 0):
-                    mode.append(-1)
-                else:
-                    mode.append(0)
-            elif isinstance(el, Impact):
-                mode.append(1 if s <= el.s_min and sd <= 0 else 0)
-            else:
-                mode.append(0)
+            mode.append(el.initial_mode(s, sd, scale_v))
         mode, _ = self._consistent_mode(t, z, mode)
         return tuple(mode)
 
@@ -386,10 +361,10 @@ class EventDrivenSolver:
         # on its boundary is admissible only if leaving it), a stop guard starting at |w| <= tol
         # fires only once w has crossed -tol; the stop then restores w = 0 exactly.
         v_scale = max(float(np.max(np.abs(z[nf:2 * nf]))) if nf else 0.0,
-                      max((abs(el.surface_velocity) for el in p.elements if isinstance(el, Friction)), default=0.0), 1.0)
+                      max((el.velocity_scale() for el in p.elements), default=0.0), 1.0)
         offset = np.zeros(len(tags))
         for j, (i, tag) in enumerate(tags):
-            if tag == "stop" and abs(start["guards"][j, 0]) <= 1e-12 * v_scale:
+            if tag in p.elements[i].soft_start_tags and abs(start["guards"][j, 0]) <= 1e-12 * v_scale:
                 offset[j] = 1e-12 * v_scale
         events = []
         for j in range(len(tags)):
@@ -452,67 +427,22 @@ class EventDrivenSolver:
     def _apply(self, t, z, mode, trig, impact_ref):
         """Apply the element rules to the triggered guards; returns new z, mode, events, jump work."""
         p = self.p
-        mode = list(mode)
-        records = []
-        jump = 0.0
-        limits = {}
+        ctx = EventContext(self, t, z, list(mode), impact_ref)
         for (i, tag) in sorted(set(trig)):
-            el = p.elements[i]
-            if isinstance(el, Friction):
-                if tag == "stop":
-                    z = self._project_velocity(t, z, i, el.surface_velocity)
-                    old = mode[i]
-                    mode[i] = 0
-                    fk, fs = el.levels(t)
-                    lim = fs if el.restick == "static" else fk
-                    limits[i] = lim
-                    records.append([i, "stop", old])
-                else:
-                    out = self._eval(t, z, mode)
-                    lam = out["F"][i, 0]
-                    mode[i] = -int(np.sign(lam)) or (1 if tag == "break+" else -1)
-                    records.append([i, "slip", None])
-            elif isinstance(el, OneSided):
-                mode[i] = 0 if tag == "open" else 1
-                records.append([i, "contact_open" if tag == "open" else "contact_close", None])
-            elif isinstance(el, Gap):
-                mode[i] = {"leave": 0, "close+": 1, "close-": -1}[tag]
-                records.append([i, "contact_open" if tag == "leave" else "contact_close", None])
-            elif isinstance(el, Impact):
-                if tag == "hit":
-                    q, v, e = self._split(z)
-                    sd = p.gf[i] @ v + p.gve[i] @ e
-                    if sd >= 0:
-                        continue
-                    E0 = p.energy(t, q[:, None], v[:, None], e[:, None], tuple(mode))[0]
-                    impact_ref[i] = max(impact_ref.get(i, 0.0), abs(sd))
-                    vplus = -el.restitution * sd
-                    vrest = el.v_rest if el.v_rest is not None else self.o.rest_tol * impact_ref[i]
-                    z = self._project_position(t, z, i, el.s_min)
-                    records.append([i, "impact", None])
-                    if vplus <= vrest:
-                        z = self._project_velocity(t, z, i, 0.0)
-                        mode[i] = 1
-                        records.append([i, "contact_close", None])
-                    else:
-                        z = self._project_velocity(t, z, i, vplus)
-                    q, v, e = self._split(z)
-                    jump += p.energy(t, q[:, None], v[:, None], e[:, None], tuple(mode))[0] - E0
-                else:
-                    mode[i] = 0
-                    records.append([i, "contact_open", None])
+            ctx.i = i
+            p.elements[i].on_event(tag, ctx)
+        z, mode, records, limits = ctx.z, ctx.modes, ctx.records, ctx.limits
         before = list(mode)
         mode, out = self._consistent_mode(t, z, mode, limits)
         for i, el in enumerate(p.elements):
             if mode[i] != before[i] and i not in {r[0] for r in records}:
-                kind = "slip" if isinstance(el, Friction) else "contact_open"
-                records.append([i, kind, None])
+                records.append([i, el.release_event()])
         events = []
-        for i, kind, old in records:
+        for i, kind in records:
             if kind == "stop":
                 kind = "stick" if mode[i] == 0 else "reversal"
             events.append(Event(t=t, kind=kind, element=p.elements[i].name, state=self._state_dict(z)))
-        return z, tuple(mode), events, jump
+        return z, tuple(mode), events, ctx.jump
 
     # ------------------------------------------------------------- driver
     def run(self, t_end: float, t0: float = 0.0) -> SimulationResult:
@@ -579,6 +509,7 @@ class EventDrivenSolver:
         q, v, e = Z[:p.nf], Z[p.nf:2 * p.nf], Z[2 * p.nf:]
         x, xd = p.full_state(q, v, e)
         E = np.zeros(T.size)
+        Fel = np.zeros((len(p.elements), T.size))
         groups: dict = {}
         for k, md in enumerate(ms):
             groups.setdefault(md, []).append(k)
@@ -586,8 +517,11 @@ class EventDrivenSolver:
             ks = np.array(ks)
             if p.time_invariant:
                 E[ks] = p.energy(0.0, q[:, ks], v[:, ks], e[:, ks], md)
+                Fel[:, ks] = p.evaluate(0.0, q[:, ks], v[:, ks], e[:, ks], md)["F"]
             else:
-                E[ks] = [p.energy(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)[0] for k in ks]
+                for k in ks:
+                    E[k] = p.energy(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)[0]
+                    Fel[:, k] = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)["F"][:, 0]
         W = np.array(Ws)
         if self.o.energy:
             resid = (E - E[0]) - W
@@ -604,7 +538,7 @@ class EventDrivenSolver:
                                step_rejections=acc["rejections"], warnings=list(self.warnings),
                                stopped_early=stopped, reason=reason,
                                elements=[f"{el.kind}:{el.name}" for el in p.elements],
-                               driven=[p.names[j] for j in p.c],
+                               driven=[p.names[j] for j in p.c], element_forces=Fel,
                                work_parts={k: float(w) for k, w in acc["Wp"].items()})
         per = detect_period(res) if events else detect_period_smooth(res)
         if per is not None:
@@ -696,3 +630,60 @@ def _hermite_argmax(g0, g1, d0, d1, h):
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
     """Event-driven simulation of ``problem`` on [t0, t_end] (see module docstring)."""
     return EventDrivenSolver(problem, options).run(t_end, t0)
+
+
+class EventContext:
+    """What an element's event rule (``Element.on_event``) may read and change at an event: the
+    state, its own mode, the stick limit of the restick rule, the event records, the energy jump."""
+
+    def __init__(self, solver: EventDrivenSolver, t: float, z: np.ndarray, modes: list, impact_ref: dict):
+        self.solver, self.t, self.z, self.modes, self.impact_ref = solver, t, z, modes, impact_ref
+        self.i = 0
+        self.records: list = []
+        self.limits: dict = {}
+        self.jump = 0.0
+        self.rest_tol = solver.o.rest_tol
+
+    @property
+    def mode(self) -> int:
+        return self.modes[self.i]
+
+    @mode.setter
+    def mode(self, value: int) -> None:
+        self.modes[self.i] = value
+
+    @property
+    def limit(self):
+        return self.limits.get(self.i)
+
+    @limit.setter
+    def limit(self, value: float) -> None:
+        self.limits[self.i] = value
+
+    def record(self, kind: str) -> None:
+        self.records.append([self.i, kind])
+
+    def velocity(self) -> float:
+        """s' of the element."""
+        p = self.solver.p
+        q, v, e = self.solver._split(self.z)
+        return p.gf[self.i] @ v + p.gve[self.i] @ e
+
+    def energy(self) -> float:
+        q, v, e = self.solver._split(self.z)
+        return self.solver.p.energy(self.t, q[:, None], v[:, None], e[:, None], tuple(self.modes))[0]
+
+    def constraint_force(self) -> float:
+        """The constraint force of the element in the current modes."""
+        return self.solver._eval(self.t, self.z, self.modes)["F"][self.i, 0]
+
+    def impact_speed(self, speed: float) -> float:
+        """The largest impact speed of the element so far (``speed`` included)."""
+        self.impact_ref[self.i] = max(self.impact_ref.get(self.i, 0.0), speed)
+        return self.impact_ref[self.i]
+
+    def project_velocity(self, target: float) -> None:
+        self.z = self.solver._project_velocity(self.t, self.z, self.i, target)
+
+    def project_position(self, target: float) -> None:
+        self.z = self.solver._project_position(self.t, self.z, self.i, target)

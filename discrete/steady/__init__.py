@@ -9,7 +9,8 @@ from .afc import AFCResult, SteadyModel, SteadySettings, afc
 from .continuation import Branch, arclength
 from .hb import HBModel, backbone, floquet_hb
 from .shooting import ShootingModel
-from .system import Cubic, PeriodicSystem
+from ..nonsmooth.elements import Cubic
+from .system import PeriodicSystem
 from . import estimates
 
 __all__ = ["AFCResult", "SteadyModel", "SteadySettings", "afc", "Branch", "arclength",

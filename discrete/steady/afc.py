@@ -3,8 +3,8 @@ event-driven integrator, continued in the forcing frequency by pseudo-arc-length
 folds and Floquet stability.
 
 A :class:`SteadyModel` takes a *problem factory* -- any object whose ``problem(omega)`` returns the
-:class:`~discrete.nonsmooth.Problem` with every harmonic driver and force at ``omega`` and whose
-``cubics`` lists the smooth cubic springs -- and the :class:`SteadySettings`.  The model-file layer
+:class:`~discrete.nonsmooth.Problem` with every harmonic driver and force at ``omega`` (e.g. a
+:class:`~discrete.nonsmooth.ProblemSpec`) -- and the :class:`SteadySettings`.  The model-file layer
 (``[steady]`` table) builds both for lumped and hybrid models.
 """
 from __future__ import annotations
@@ -14,11 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelError, SolverError
-from ..nonsmooth.elements import Friction
 from .continuation import arclength, refine_fold
 from .hb import HBModel, floquet_hb, time_guess
 from .shooting import ShootingModel
-from .system import Cubic, PeriodicSystem
+from .system import PeriodicSystem
 
 
 
@@ -62,6 +61,9 @@ class AFCResult:
     stability_computed: bool = True
     extra: dict = field(default_factory=dict)
     critical: np.ndarray | None = None    # real part of the largest-modulus multiplier (< 0: flip/period doubling)
+    completed: bool = False               # the last point is solved exactly at the end of the asked range
+    stopped_at: float = float("nan")      # the last frequency reached, rad/s (the range end when completed)
+    stop_cause: str = ""                  # "end" | "left_range" | "ds_min" | "max_steps" (continuation.Branch.stop)
     states: list = field(default_factory=list, repr=False)   # solver unknowns per point (HB coefficients
     #                                                          or shooting initial state), not in to_dict
 
@@ -114,7 +116,9 @@ class AFCResult:
                 "critical_multiplier_re": None if self.critical is None else
                 [None if not np.isfinite(x) else float(x) for x in self.critical],
                 "peak": dict(zip(("omega_rad_s", "response"), self.peak())) if self.omega.size else None,
-                "n_points": int(self.omega.size), "reason": self.reason, **self.extra}
+                "n_points": int(self.omega.size), "reason": self.reason, "completed": bool(self.completed),
+                "stopped_at_rad_s": None if not np.isfinite(self.stopped_at) else float(self.stopped_at),
+                "stop_cause": self.stop_cause, **self.extra}
 
     def table(self) -> str:
         head = f"{'omega rad/s':>12} " + (f"{'z':>8} " if self.omega_ref else "") + f"{self.response_label:>14} {'stable':>6} {'max|mu|':>9}"
@@ -141,9 +145,8 @@ class SteadyModel:
         if not p0.omegas:
             raise ModelError("model file", "driver/force", None,
                              "a harmonic [[driver]] or [[force]] (amplitude and omega) for a forced steady state")
-        self.cubics = list(spec.cubics)
         self.problem0 = p0
-        self.system = PeriodicSystem(p0, extra=self.cubics, regularisation=settings.regularisation)
+        self.system = PeriodicSystem(p0, regularisation=settings.regularisation)
         names = p0.names
         self.resp_label = "response"
         scale = f" / {settings.scale:g}" if settings.scale != 1 else ""
@@ -153,7 +156,7 @@ class SteadyModel:
                 raise ModelError("[steady.response]", "element", settings.response_element, f"one of {en}")
             self.resp_el = en.index(settings.response_element)
             el = self.system.elements[self.resp_el]
-            if isinstance(el, Friction):
+            if el.work == "friction":
                 raise ModelError("[steady.response]", "element", settings.response_element,
                                  "a spring-like element (not friction)")
             self.resp_label = f"{settings.measure} |F| {settings.response_element}{scale}"
@@ -228,17 +231,7 @@ def _hb_curve(sm: SteadyModel) -> AFCResult:
     br = arclength(fun, X0, w0, w1, xscale=xs, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
                    ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True)
     om, resp, stab, mm, states, crit = [], [], [], [], [], []
-    lo, hi = min(w0, w1), max(w0, w1)
-    pts = list(zip(br.x, br.w))
-    if br.reason.startswith("reached") and len(pts) >= 2 and not lo <= pts[-1][1] <= hi:
-        wend = hi if pts[-1][1] > hi else lo           # close the curve exactly at the range end
-        try:
-            pts[-1] = (hb.solve(pts[-2][0], wend)[0], wend)
-        except SolverError:
-            pass
-    for x, w in pts:
-        if not lo - 1e-12 <= w <= hi + 1e-12:
-            continue
+    for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
         t, q, v = hb.evaluate(x, w, points=max(512, hb.N))
         states.append(x)
         om.append(w)
@@ -255,14 +248,13 @@ def _hb_curve(sm: SteadyModel) -> AFCResult:
     return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
                      max_multiplier=np.array(mm), folds=folds, method=f"hb (H = {hb.H}, N = {hb.N}, AFT)",
                      response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=br.reason,
+                     completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
                      stability_computed=cfg.stability, extra={"steps_rejected": br.steps_rejected}, states=states,
                      critical=np.array(crit))
 
 
 def _shooting_curve(sm: SteadyModel) -> AFCResult:
     cfg = sm.cfg
-    if not sm.system.exact_ok:
-        raise ModelError("[steady]", "method", "shooting", "'hb' for models with [[cubic_spring]] (no exact element)")
     sh = ShootingModel(sm.factory, nu=cfg.subharmonic, steps_per_period=cfg.steps_per_period)
     w0, w1 = cfg.range
     n = sh.n
@@ -283,10 +275,7 @@ def _shooting_curve(sm: SteadyModel) -> AFCResult:
     br = arclength(fun, y, w0, w1, xscale=sc, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
                    ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, tol=1e-8)
     om, resp, stab, mm, states, crit = [], [], [], [], [], []
-    lo, hi = min(w0, w1), max(w0, w1)
-    for x, w in zip(br.x, br.w):
-        if not lo - 1e-12 <= w <= hi + 1e-12:
-            continue
+    for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
         resp.append(_shoot_measure(sm, sh, x, w))
         states.append(x)
         om.append(w)
@@ -301,6 +290,7 @@ def _shooting_curve(sm: SteadyModel) -> AFCResult:
     return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
                      max_multiplier=np.array(mm), folds=folds, method="shooting (event-driven, FD monodromy)",
                      response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=br.reason,
+                     completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
                      stability_computed=cfg.stability,
                      extra={"steps_rejected": br.steps_rejected, "simulations": sh.n_sims}, states=states,
                      critical=np.array(crit))

@@ -5,9 +5,21 @@ scaled (``x / xscale``, ``w / wscale``) so that the arc length weighs amplitude 
 Predictor: the tangent (null vector of ``[Jx Jw]``, oriented along the previous tangent); corrector:
 Newton on ``R = 0`` plus the arc-length condition ``tau . (u - u_pred) = 0``.  Step control: the step
 grows by 1.5 after a corrector of <= 3 iterations and is halved after a failure (no convergence in
-``maxit``, or a tangent that turns by more than ~37 degrees); a step below ``ds_min`` stops the
-branch with reason "stalled".  Folds (turning points) are the sign changes of the frequency component
-of the tangent; their frequency and amplitude are interpolated linearly in the tangent component.
+``maxit``, a residual that cannot be evaluated, or a tangent that turns by more than ~37 degrees).
+Folds (turning points) are the sign changes of the frequency component of the tangent; their frequency
+and amplitude are interpolated linearly in the tangent component.
+
+How a branch ends (``Branch.stop``, ``Branch.completed``, ``Branch.reason``):
+
+* ``"end"`` -- a corrected point lies at or beyond the end ``w_stop`` of the range.  The branch is
+  *landed* there: Newton on ``R(x, w_stop) = 0`` at the fixed frequency ``w_stop``, started from the
+  secant between the last point inside and the point beyond (so the last point is a solution at
+  exactly ``w_stop``, not an interpolation).  ``completed = True``.
+* ``"left_range"`` -- the branch turned back (a fold) and crossed the other end of the range (its
+  start); it is landed there the same way and stops, ``completed = False``.
+* ``"ds_min"`` -- the step fell below ``ds_min``; the reason names the last frequency reached and the
+  last failure (corrector divergence, residual error, tangent turn, landing failure).
+* ``"max_steps"`` -- ``max_steps`` points were added before the end was reached.
 """
 from __future__ import annotations
 
@@ -24,9 +36,21 @@ class Branch:
     w: list = field(default_factory=list)
     tangent_w: list = field(default_factory=list)
     iterations: list = field(default_factory=list)
-    folds: list = field(default_factory=list)          # (index before fold, w_fold)
-    reason: str = ""
+    folds: list = field(default_factory=list)          # (index before fold, w_fold, fraction)
+    reason: str = ""                                   # one sentence: where and why the branch ended
     steps_rejected: int = 0
+    completed: bool = False                            # True iff the last point is solved at w_end
+    stop: str = ""                                     # "end" | "left_range" | "ds_min" | "max_steps"
+    w_end: float = float("nan")                        # the end of the range that was asked for
+
+    @property
+    def stopped_at(self) -> float:
+        """The last frequency reached (``w_end`` exactly when completed)."""
+        return float(self.w[-1]) if self.w else float("nan")
+
+
+class _StepFailure(Exception):
+    """A rejected continuation step (the message says why)."""
 
 
 def newton_fixed(fun, x0, w, tol=1e-9, maxit=30, xscale=None):
@@ -46,18 +70,43 @@ def newton_fixed(fun, x0, w, tol=1e-9, maxit=30, xscale=None):
     raise SolverError(f"Newton did not converge at omega = {w!r} in {maxit} iterations (no start of continuation)")
 
 
+def _land(fun, xa, wa, xb, wb, wt, xs, tol, maxit, h):
+    """The branch point at the fixed frequency ``wt`` between the solved points a (inside) and b (at or
+    beyond ``wt``): Newton on ``R(x, wt) = 0`` from the secant a-b at ``wt``.  The result must stay
+    within one arc-length step ``h`` (scaled) of the secant, else it is another branch."""
+    f = (wt - wa) / (wb - wa) if wb != wa else 1.0
+    xp = xa + f * (xb - xa)
+    x = xp.copy()
+    for it in range(1, maxit + 1):
+        R, Jx, _ = fun(x, wt, need_w=False)
+        dx = np.linalg.solve(Jx, -R)
+        x = x + dx
+        if not np.all(np.isfinite(x)):
+            raise _StepFailure(f"the landing corrector at omega = {wt:.10g} diverged")
+        if np.max(np.abs(dx / xs)) <= tol * max(1.0, np.max(np.abs(x / xs))):
+            if np.linalg.norm((x - xp) / xs) > max(h, 1e-300):
+                raise _StepFailure(f"the landing corrector at omega = {wt:.10g} converged to a point off the "
+                                   f"branch (scaled distance {np.linalg.norm((x - xp) / xs):.3g} > step {h:.3g})")
+            return x, it
+    raise _StepFailure(f"the landing corrector at omega = {wt:.10g} did not converge in {maxit} iterations")
+
+
 def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_max=0.1, max_steps=2000,
               tol=1e-9, maxit=12, w_bounds=None, start_converged=False, callback=None) -> Branch:
-    """Follow the branch from (x0, w0) (corrected at fixed w0 first) towards ``w_stop``."""
+    """Follow the branch from (x0, w0) (corrected at fixed w0 first) towards ``w_stop``; it ends exactly
+    at ``w_stop`` (landed, ``completed``) or says where and why it stopped (module docstring)."""
     xs = np.asarray(xscale, float)
     direction = 1.0 if w_stop >= w0 else -1.0
     lo, hi = w_bounds if w_bounds is not None else (min(w0, w_stop), max(w0, w_stop))
+    w_end = hi if direction > 0 else lo
+    w_start = lo if direction > 0 else hi
+    near = 1e-10 * abs(wscale)         # a corrected point this close to a bound is landed on it
     if start_converged:
         x, its = np.array(x0, float), 0
     else:
         x, its = newton_fixed(fun, x0, w0, tol=tol, xscale=xs)
     w = float(w0)
-    br = Branch()
+    br = Branch(w_end=float(w_end))
     n = x.size
 
     def tangent(x, w, prev):
@@ -77,6 +126,33 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             t = -t
         return t
 
+    def corrector(up, tau):
+        uu = up.copy()
+        ww = uu[n] * wscale
+        for it in range(1, maxit + 1):
+            xx, ww = uu[:n] * xs, uu[n] * wscale
+            R, Jx, Jw = fun(xx, ww)
+            A = np.zeros((n + 1, n + 1))
+            A[:n, :n] = Jx * xs[None, :]
+            A[:n, n] = Jw * wscale
+            A[n] = tau
+            rhs = -np.concatenate([R, [tau @ (uu - up)]])
+            du = np.linalg.solve(A, rhs)
+            uu = uu + du
+            if not np.all(np.isfinite(uu)):
+                raise _StepFailure(f"the corrector diverged near omega = {ww:.6g}")
+            if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(uu))):
+                return uu, it
+        raise _StepFailure(f"the corrector did not converge in {maxit} iterations near omega = {ww:.6g}")
+
+    def crossed(wn):
+        """The range bound at or beyond which ``wn`` lies (None inside)."""
+        if wn >= hi - near and (direction > 0 or w < hi - near):
+            return hi
+        if wn <= lo + near and (direction < 0 or w > lo + near):
+            return lo
+        return None
+
     prev = np.zeros(n + 1)
     prev[n] = direction
     tau = tangent(x, w, prev)
@@ -90,44 +166,32 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     for step in range(max_steps):
         u = np.concatenate([x / xs, [w / wscale]])
         ok = False
+        failure = f"the step ds = {h:g} is below ds_min before any try"
+        landed = None
         while h >= ds_min:
-            up = u + h * tau
-            uu = up.copy()
-            conv = False
-            for it in range(1, maxit + 1):
-                xx, ww = uu[:n] * xs, uu[n] * wscale
-                try:
-                    R, Jx, Jw = fun(xx, ww)
-                except SolverError:
-                    break
-                A = np.zeros((n + 1, n + 1))
-                A[:n, :n] = Jx * xs[None, :]
-                A[:n, n] = Jw * wscale
-                A[n] = tau
-                rhs = -np.concatenate([R, [tau @ (uu - up)]])
-                try:
-                    du = np.linalg.solve(A, rhs)
-                except np.linalg.LinAlgError:
-                    break
-                uu = uu + du
-                if not np.all(np.isfinite(uu)):
-                    break
-                if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(uu))):
-                    conv = True
-                    break
-            if conv:
+            try:
+                uu, it = corrector(u + h * tau, tau)
                 xn, wn = uu[:n] * xs, uu[n] * wscale
-                try:
-                    tn = tangent(xn, wn, tau)
-                except (SolverError, np.linalg.LinAlgError):
-                    tn = None
-                if tn is not None and tn @ tau > 0.8:
-                    ok = True
-                    break
+                landed = crossed(wn)
+                if landed is not None:     # at or beyond a bound: land on it at the fixed frequency
+                    xn, it_land = _land(fun, x, w, xn, wn, landed, xs, tol, maxit, h)
+                    wn = float(landed)
+                    it = max(it, it_land)
+                tn = tangent(xn, wn, tau)
+                if tn @ tau <= 0.8:
+                    raise _StepFailure(f"the tangent turned by {np.degrees(np.arccos(np.clip(tn @ tau, -1, 1))):.1f}"
+                                       f" deg (limit 36.9 deg) between omega = {w:.6g} and {wn:.6g}")
+                ok = True
+                break
+            except (SolverError, np.linalg.LinAlgError, _StepFailure) as exc:
+                failure = str(exc) or type(exc).__name__
+                landed = None
             br.steps_rejected += 1
             h *= 0.5
         if not ok:
-            br.reason = f"stalled at omega = {w:.6g}: no corrector convergence down to ds = {ds_min:g}"
+            br.stop = "ds_min"
+            br.reason = (f"stalled at omega = {w:.10g} (range end {w_end:.10g} not reached): the step fell below "
+                         f"ds_min = {ds_min:g}; last failure: {failure}")
             break
         if np.sign(tn[n]) != np.sign(tau[n]) and tau[n] != 0:
             fr = tau[n] / (tau[n] - tn[n])
@@ -143,11 +207,20 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             h = min(1.5 * h, ds_max)
         elif it >= 7:
             h = max(0.6 * h, ds_min)
-        if w > hi or w < lo:
-            br.reason = "reached the end of the frequency range"
+        if landed == w_end:
+            br.stop, br.completed = "end", True
+            br.reason = f"reached the end of the frequency range: omega = {w_end:.10g} (solved there)"
+            break
+        if landed is not None:
+            fold = f" at the fold near omega = {br.folds[-1][1]:.6g}" if br.folds else ""
+            br.stop = "left_range"
+            br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): the branch turned "
+                         f"back{fold} and left the range through its start omega = {w_start:.10g}")
             break
     else:
-        br.reason = f"max_steps = {max_steps} reached"
+        br.stop = "max_steps"
+        br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): max_steps = {max_steps} "
+                     f"reached")
     return br
 
 

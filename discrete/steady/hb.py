@@ -32,10 +32,8 @@ class HBModel:
         H = self.H
         # discontinuous (friction sign) or kinked (one-sided, gap) forces: AFT sampling error ~ 1/N
         # resp. 1/N^2, so these get a denser default grid
-        from ..nonsmooth.elements import Friction, Gap, OneSided
-        rough = any(isinstance(el, (Friction, Gap, OneSided)) for el in system.elements)
-        N = samples or (max(1024, 16 * H) if any(isinstance(el, Friction) for el in system.elements)
-                        else max(256, 16 * H) if rough else max(64, 8 * H + 4))
+        smooth = min((el.smoothness for el in system.elements), default=2)
+        N = samples or (max(1024, 16 * H) if smooth == 0 else max(256, 16 * H) if smooth == 1 else max(64, 8 * H + 4))
         self.N = N
         th = 2 * np.pi * np.arange(N) / N
         G = np.ones((2 * H + 1, N))

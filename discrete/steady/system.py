@@ -16,33 +16,22 @@ serves every frequency.  Element force laws for the smooth solvers (HB):
   velocity), eps = ``regularisation`` (a stated approximation: the HB branch is compared with exact
   shooting in the validation cases);
 * impacts: not supported by HB (use shooting);
-* :class:`Cubic`: the cubic spring ``F = -k3 s^3`` of the textbook's (8.20) (HB/time integration only;
-  the exact event-driven solver has no cubic element).
+* the cubic spring ``F = -k3 s^3`` of the textbook's (8.20) (a smooth element: HB as it is, shooting
+  with numerically integrated pieces).
+
+Each element supplies its law (``Element.smooth_force``); this module does not look at their types.
 """
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ModelError
-from ..nonsmooth.elements import Friction, Gap, Impact, OneSided
-
-
-@dataclass
-class Cubic:
-    """Cubic spring on s = g . x: force along s ``F = -k3 s^3`` (hardening for k3 > 0)."""
-
-    name: str
-    g: np.ndarray
-    k3: float
-    kind = "cubic"
 
 
 class PeriodicSystem:
     """Free-DOF matrices, driver/force data and elements of a Problem, evaluable at any forcing omega."""
 
-    def __init__(self, problem, extra=(), regularisation: float = 1e-3):
+    def __init__(self, problem, regularisation: float = 1e-3):
         p = problem
         if not p.time_invariant:
             raise ModelError("steady", "inertia_rate", "nonzero", "constant inertias for a periodic steady state")
@@ -64,20 +53,12 @@ class PeriodicSystem:
         self.gf = [np.asarray(x, float) for x in p.gf]
         self.ge = [np.asarray(x, float) for x in p.ge]
         self.Pfull = p.P
-        for el in extra:
-            g = np.asarray(el.g, float)
-            self.elements.append(el)
-            self.gf.append(g[f])
-            self.ge.append(g @ p.P)
         self.eps = float(regularisation)
 
     @property
     def smooth_ok(self) -> bool:
-        return not any(isinstance(el, Impact) for el in self.elements)
-
-    @property
-    def exact_ok(self) -> bool:
-        return not any(isinstance(el, Cubic) for el in self.elements)
+        """Every element has a smooth (or piecewise-linear continuous) law for harmonic balance."""
+        return all(el.smooth_law for el in self.elements)
 
     # ------------------------------------------------------------ exogenous
     def exo(self, t, omega):
@@ -109,33 +90,7 @@ class PeriodicSystem:
     # ------------------------------------------------------------ elements
     def element_force(self, i, s, sd):
         """Force along s of element i, and its derivatives dF/ds, dF/ds' (smooth/penalty laws)."""
-        el = self.elements[i]
-        z = np.zeros_like(s)
-        if isinstance(el, OneSided):
-            d = s - el.s_open
-            on = (el.side * d > 0).astype(float)
-            return -el.k * d * on, -el.k * on, z
-        if isinstance(el, Gap):
-            if el.law == "arctan":
-                h = 1e-7 * max(el.upper, 1e-300)
-                F = el.smooth_force(s)
-                return F, (el.smooth_force(s + h) - el.smooth_force(s - h)) / (2 * h), z
-            up = (s > el.upper).astype(float)
-            lo = (s < el.lower).astype(float)
-            F = -el.k * ((s - el.upper) * up + (s - el.lower) * lo)
-            return F, -el.k * (up + lo), z
-        if isinstance(el, Friction):
-            w = sd - el.surface_velocity
-            fk = el.kinetic
-            eps = self.eps
-            th = np.tanh(w / eps)
-            F = -fk * th - el.viscous * w - el.quadratic * w * np.abs(w) - el.cubic * w * w * np.abs(w)
-            dF = -fk * (1 - th ** 2) / eps - el.viscous - 2 * el.quadratic * np.abs(w) - 3 * el.cubic * w * np.abs(w)
-            return F, z, dF
-        if isinstance(el, Cubic):
-            return -el.k3 * s ** 3, -3 * el.k3 * s ** 2, z
-        raise ModelError(f"element {el.name!r}", "kind", el.kind,
-                         "one_sided | gap | friction | cubic for harmonic balance (impacts: use method = 'shooting')")
+        return self.elements[i].smooth_force(s, sd, self.eps)
 
     def rhs_terms(self, t, q, v, omega):
         """Sum of element forces on the DOFs (n, m) and Jacobians dFq, dFv (n, n, m)."""

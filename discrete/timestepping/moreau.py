@@ -40,7 +40,6 @@ import scipy.sparse.linalg as spla
 
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
-from ..nonsmooth.elements import Friction, Gap, Impact, OneSided
 from ..nonsmooth.problem import ExternalForce, MotionLaw
 from ..nonsmooth.result import Event, TimeHistory
 
@@ -59,12 +58,11 @@ class StepOptions:
 @dataclass
 class SteppingResult(TimeHistory):
     """Result of the Moreau-Jean scheme: :class:`~discrete.nonsmooth.result.TimeHistory` plus the
-    projected Gauss-Seidel statistics and the element impulses."""
+    projected Gauss-Seidel statistics (``element_forces``: the mean force impulse / dt of each step)."""
 
     n_steps: int
     pgs_iterations_max: int
     pgs_unconverged: int
-    impulses: np.ndarray | None = None     # (n_elements, n_samples): impulse / dt (mean force) of the step
     method: str = field(default="moreau-jean", kw_only=True)
 
     def _solver_dict(self) -> dict:
@@ -104,15 +102,6 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     for j in c:
         drivers.setdefault(int(j), MotionLaw())
     elements = list(elements)
-    for el in elements:
-        if isinstance(el, Gap) and el.law != "exact":
-            raise ModelError(f"element {el.name!r}", "law", el.law,
-                             "'exact' for the Moreau-Jean scheme (use method = 'event' for the smooth law (11.2))")
-        if not isinstance(el, (Friction, Impact, OneSided, Gap)):
-            raise ModelError(f"element {getattr(el, 'name', '?')!r}", "type", type(el).__name__,
-                             "Friction | Impact | OneSided | Gap")
-        if isinstance(el, Friction) and el.mass0 is not None and el.mass_rate:
-            raise ModelError(f"element {el.name!r}", "normal", "weight", "constant levels for the time stepper")
     M = system.M.tocsr()
     K = system.K.tocsr()
     C = system.C.tocsr()
@@ -121,6 +110,7 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     # the step is shortened slightly so that an integer number of steps ends exactly at t_end
     n_steps = int(np.ceil((t_end - t0) / float(o.dt) - 1e-9))
     h, th = (t_end - t0) / n_steps, float(o.theta)
+    laws = [el.moreau(h, th) for el in elements]      # each element's law of one step
     Mh = sp.csc_matrix(Mff + h * th * Cff + (h * th) ** 2 * Kff)
     lu = spla.splu(Mh)
     nel = len(elements)
@@ -133,12 +123,12 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
         bad = int(np.flatnonzero(Dd <= 0)[0])
         raise ModelError(f"element {elements[bad].name!r}", "g", "acts on constrained DOFs only",
                          "an element acting on at least one free DOF")
-    laws = [drivers[int(j)] for j in c]
+    motions = [drivers[int(j)] for j in c]
 
     def drv(t):
         if c.size == 0:
             return np.zeros(0), np.zeros(0), np.zeros(0)
-        a = np.array([_motion(l, t) for l in laws])
+        a = np.array([_motion(l, t) for l in motions])
         return a[:, 0], a[:, 1], a[:, 2]
 
     Fg = [np.asarray(F.g, float)[f] for F in forces]
@@ -152,21 +142,8 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     x0 = np.zeros(n) if x0 is None else np.asarray(x0, float)
     v0 = np.zeros(n) if v0 is None else np.asarray(v0, float)
     q, v = x0[f].copy(), v0[f].copy()
-    is_fric = np.array([isinstance(el, Friction) for el in elements], dtype=bool)
-    # springs with clearance: force -k (s - upper) above upper, -k (s - lower) below lower, else 0
-    is_spring = np.array([isinstance(el, (OneSided, Gap)) for el in elements], dtype=bool)
-    is_imp = np.array([isinstance(el, Impact) for el in elements], dtype=bool)
-    ks = np.array([el.k if isinstance(el, (OneSided, Gap)) else 0.0 for el in elements])
-    up = np.array([(el.upper if isinstance(el, Gap) else (el.s_open if el.side == 1 else np.inf))
-                   if isinstance(el, (OneSided, Gap)) else np.inf for el in elements])
-    lo = np.array([(el.lower if isinstance(el, Gap) else (el.s_open if el.side == -1 else -np.inf))
-                   if isinstance(el, (OneSided, Gap)) else -np.inf for el in elements])
-    fk = np.array([el.kinetic if isinstance(el, Friction) else 0.0 for el in elements])
-    fs = np.array([el.static if isinstance(el, Friction) else 0.0 for el in elements])
-    sv = np.array([el.surface_velocity if isinstance(el, Friction) else 0.0 for el in elements])
-    smin = np.array([el.s_min if isinstance(el, Impact) else 0.0 for el in elements])
-    rest = np.array([el.restitution if isinstance(el, Impact) else 0.0 for el in elements])
-    viscous = [el for el in elements if isinstance(el, Friction) and (el.viscous or el.quadratic or el.cubic)]
+    conservative = np.array([law.conservative for law in laws], dtype=bool)
+    explicit = [i for i, law in enumerate(laws) if law.has_explicit]
     names = [str(system.dof_name[i]) if system.dof_name[i] else system.label(i) for i in range(n)]
 
     def full(qq, vv, t):
@@ -179,10 +156,9 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
 
     def energy(X, V):
         E = 0.5 * V[f] @ (Mff @ V[f]) + 0.5 * X @ (K @ X)
-        if is_spring.any():
-            sv_ = G[is_spring] @ X
-            d = np.where(sv_ > up[is_spring], sv_ - up[is_spring], np.where(sv_ < lo[is_spring], sv_ - lo[is_spring], 0.0))
-            E += 0.5 * np.sum(ks[is_spring] * d * d)
+        if conservative.any():
+            s_ = G[conservative] @ X
+            E += 0.5 * np.sum([laws[i].energy_term(si) for i, si in zip(np.flatnonzero(conservative), s_)])
         return E
 
     ts, xs, vs, Es, Ws, Ps = [], [], [], [], [], []
@@ -191,11 +167,10 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     E0 = energy(X, V)
     Wacc = 0.0
     ts.append(t); xs.append(X); vs.append(V); Es.append(E0); Ws.append(0.0); Ps.append(np.zeros(nel))
-    stick = np.zeros(nel, dtype=bool)
     if nel:
         u0 = G @ V
-        stick = is_fric & (np.abs(u0 - sv) <= 1e-12 * max(1.0, np.max(np.abs(V))))
-    contact_prev = np.zeros(nel, dtype=bool)
+        for law, ui in zip(laws, u0):
+            law.start(ui, max(1.0, np.max(np.abs(V))))
     events: list[Event] = []
     it_max, unconv = 0, 0
     p = np.zeros(nel)
@@ -208,25 +183,22 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
         xcth, vcth, acth = drv(tth)
         rhs = fext(tth) - Kfc @ xcth - Cfc @ vcth - Mfc @ acth if c.size else fext(tth)
         rhs = rhs - Cff @ v - Kff @ (q + h * th * v)
-        if viscous:
+        if explicit:
             Vc = np.zeros(n); Vc[f] = v; Vc[c] = vc0
-            for el in viscous:
-                w = el.g @ Vc - el.surface_velocity
-                rhs += el.g[f] * (-el.viscous * w - el.quadratic * w * abs(w) - el.cubic * w * w * abs(w))
+            for i in explicit:
+                g = elements[i].g
+                rhs += g[f] * laws[i].explicit_force(g @ Vc)
         vfree = v + lu.solve(h * rhs)
         if nel:
             ufree = Gf @ vfree + Gc @ vc1
             X0 = np.zeros(n); X0[f] = q; X0[c] = xc0
             V0 = np.zeros(n); V0[f] = v; V0[c] = vc0
             s0, u_prev = G @ X0, G @ V0
-            active = is_imp & (s0 + 0.5 * h * u_prev <= smin)
-            # springs: s_theta = a + b u1 (theta-point position), a = s0 + h theta (1 - theta) u0 + drivers' part
-            sa = s0 + h * th * (1 - th) * u_prev
-            sb = h * th * th
-            hkb = h * ks * sb
-            bound = h * np.where(stick, fs, fk)
-            target = np.where(active, -rest * np.minimum(u_prev, 0.0), 0.0)
-            p = np.where(is_fric | active | is_spring, p, 0.0)
+            for law, si, ui in zip(laws, s0, u_prev):
+                law.begin(si, ui)
+            active = np.array([law.active for law in laws], dtype=bool)
+            bound = np.array([law.bound for law in laws])
+            p = np.where(active, p, 0.0)
             scale = max(float(np.max(bound)) if bound.size else 0.0,
                         float(np.max(np.abs(D @ np.ones(nel)))) * 1e-300, 1e-300)
             u = ufree + D @ p
@@ -236,25 +208,9 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
               for it in range(it + 1, o.max_iter + 1):
                   dmax = 0.0
                   for i in range(nel):
-                      if not (is_fric[i] or active[i] or is_spring[i]):
+                      if not active[i]:
                           continue
-                      ui = u[i]
-                      if is_fric[i]:
-                          r = ui - sv[i] - Dd[i] * p[i]
-                          new = min(max(-r / Dd[i], -bound[i]), bound[i])
-                      elif is_spring[i]:
-                          # piecewise-linear spring at the theta-point, solved exactly on its branch
-                          r = ui - Dd[i] * p[i]
-                          sfree = sa[i] + sb * r
-                          if sfree > up[i]:
-                              new = -h * ks[i] * (sfree - up[i]) / (1.0 + hkb[i] * Dd[i])
-                          elif sfree < lo[i]:
-                              new = -h * ks[i] * (sfree - lo[i]) / (1.0 + hkb[i] * Dd[i])
-                          else:
-                              new = 0.0
-                      else:
-                          r = ui - Dd[i] * p[i] - target[i]
-                          new = max(0.0, -r / Dd[i])
+                      new = laws[i].project(u[i], Dd[i], p[i])
                       dp = new - p[i]
                       if dp != 0.0:
                           u += D[:, i] * dp
@@ -264,13 +220,10 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
                   if dmax <= o.tol * ref:
                       converged = True
                       break
-              # breakaway within the step: an element that started at rest and saturated its static
-              # bound slips, so the kinetic level applies over the step (one more pass)
-              brk = stick & is_fric & (np.abs(p) >= bound * (1 - 1e-12)) & (fs > fk)
-              if not brk.any():
+              # a law may need the step again (friction breaking away within it: the kinetic level)
+              if not any([law.retry(pi) for law, pi in zip(laws, p)]):
                   break
-              bound = np.where(brk, h * fk, bound)
-              p = np.clip(p, -bound, bound)
+              p = np.array([law.retry_clip(pi) for law, pi in zip(laws, p)])
               u = ufree + D @ p
               converged = False
             it_max = max(it_max, it)
@@ -289,29 +242,16 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
             dW += h * (vcth @ (K[c] @ Xm) - vm @ (Cfc @ vcth + Mfc @ acth))
         if nel:
             um = 0.5 * (G[:, f] @ (v + v1)) + Gc @ vcth
-            dW += p[~is_spring] @ um[~is_spring]      # springs are conservative: their energy is in E
-            if viscous:
-                for el in viscous:
-                    w = 0.5 * (el.g[f] @ (v + v1)) + el.g[c] @ vcth - el.surface_velocity
-                    Fv = -el.viscous * w - el.quadratic * w * abs(w) - el.cubic * w * w * abs(w)
-                    dW += h * Fv * (0.5 * (el.g[f] @ (v + v1)))
+            dW += p[~conservative] @ um[~conservative]      # conservative laws: their energy is in E
+            for i in explicit:
+                g = elements[i].g
+                dW += h * laws[i].explicit_force(0.5 * (g[f] @ (v + v1)) + g[c] @ vcth) * (0.5 * (g[f] @ (v + v1)))
         Wacc += dW
         q, v, t = q1, v1, t1
         if nel:
-            X, V = full(q, v, t)
-            u1 = G @ V
-            new_stick = is_fric & (np.abs(p) < bound * (1 - 1e-9)) & (bound > 0)
-            contact = (active & (p > 0)) | (is_spring & (p != 0))
+            happened = sorted((rank, i, kind) for i, (law, pi) in enumerate(zip(laws, p)) for rank, kind in law.finish(pi))
             if o.events and len(events) < o.max_events:
-                for i in np.flatnonzero(new_stick != stick):
-                    events.append(Event(t=t, kind="stick" if new_stick[i] else "slip", element=elements[i].name,
-                                        state={}))
-                for i in np.flatnonzero(contact & ~contact_prev):
-                    events.append(Event(t=t, kind="impact" if is_imp[i] else "contact_close",
-                                        element=elements[i].name, state={}))
-                for i in np.flatnonzero(~contact & contact_prev):
-                    events.append(Event(t=t, kind="contact_open", element=elements[i].name, state={}))
-            stick, contact_prev = new_stick, contact
+                events += [Event(t=t, kind=kind, element=elements[i].name, state={}) for _, i, kind in happened]
         if k % o.sample_every == 0 or k == n_steps:
             X, V = full(q, v, t)
             ts.append(t); xs.append(X); vs.append(V); Es.append(energy(X, V)); Ws.append(Wacc)
@@ -330,7 +270,7 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     res = SteppingResult(t=np.array(ts), x=np.array(xs).T, v=np.array(vs).T, names=names, events=events,
                          t_end=float(t_end), energy=E, work=Wt, energy_error=err, n_steps=n_steps,
                          pgs_iterations_max=it_max, pgs_unconverged=unconv, warnings=warn,
-                         impulses=np.array(Ps).T if nel else None,
+                         element_forces=np.array(Ps).T if nel else None,    # impulse / dt of each step
                          elements=[f"{el.kind}:{el.name}" for el in elements], driven=[names[j] for j in c])
     # periodic regime: upward velocity crossings of every moving DOF agree over the last 3 cycles
     from ..nonsmooth.periodic import detect_period_smooth

@@ -105,7 +105,7 @@ def forced(args) -> int:
             print(f"wrote {args.plot}")
         else:
             print(f"wrote {plot_frf(res, args.plot, study.title)}")
-    if steady and not str(res.reason).startswith("reached"):
+    if steady and not res.completed:
         print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
         return 1
     return 0

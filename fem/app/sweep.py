@@ -105,7 +105,7 @@ def parse_sweep(doc: dict) -> dict:
     typed = parse(doc)
     sw = getattr(typed, "sweep", None)
     if sw is None:
-        raise ModelError(f"model file", "sweep", None, "a table [sweep] (grid = {..} or points = [..])")
+        raise ModelError("model file", "sweep", None, "a table [sweep] (grid = {..} or points = [..])")
     if sw.grid is not None:
         keys = list(sw.grid)
         axes = [_axis(sw.grid[k]) for k in keys]

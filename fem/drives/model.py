@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from discrete.errors import ModelError
-from discrete.transfer.regular import BOUNDARY_CASES, check_boundary, check_n
+from discrete.transfer.regular import check_boundary, check_n
 
 REPRESENTATIONS = ("discrete", "transfer-matrix", "continuum")
 

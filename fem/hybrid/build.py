@@ -94,7 +94,6 @@ class HybridModel:
     bodies: list[Body] = field(default_factory=list)
     springs: list[Spring] = field(default_factory=list)
     elements: list[ElementSpec] = field(default_factory=list)
-    cubics: list[ElementSpec] = field(default_factory=list)   # smooth cubic springs (steady states)
     forces: list[ForceSpec] = field(default_factory=list)
     drivers: list[DriverSpec] = field(default_factory=list)
     reduction: ReductionSpec | None = None
@@ -102,6 +101,8 @@ class HybridModel:
     initial_field: np.ndarray | None = None   # full FE initial displacement / velocity vectors
     initial_field_velocity: np.ndarray | None = None
     rayleigh: tuple[float, float] = (0.0, 0.0)   # viscous C = alpha M + beta K on the FE part
+    damping_table: object = None           # [damping]: how psi of the segments becomes viscous (time domain)
+    forcing_omegas: tuple = ()             # frequencies of the harmonic forcing (the psi reference)
     initial_harmonic: bool = False         # start from the steady state of the linear FE model under the forces
     title: str = ""
 
@@ -122,7 +123,7 @@ class CompiledHybrid:
     x0: np.ndarray
     v0: np.ndarray
     coupling: np.ndarray = None
-    cubics: list = field(default_factory=list)
+    damping_report: object = None         # how psi became viscous damping (time domain)
     _problem: Problem | None = None
 
     @property
@@ -136,7 +137,7 @@ class CompiledHybrid:
     def spec(self) -> ProblemSpec:
         """The problem without its forcing frequency fixed (time integrators, steady states)."""
         return ProblemSpec(system=self.system, elements=self.elements, drivers=self.drivers, forces=self.forces,
-                           x0=self.x0, v0=self.v0, cubics=self.cubics)
+                           x0=self.x0, v0=self.v0, damping_report=self.damping_report)
 
     def field(self, x: np.ndarray) -> np.ndarray:
         """Full FE DOF vectors from system states: x is (n_dofs_system, n_times) -> (n_times, n_fe_full)."""
@@ -196,7 +197,7 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
         return ("fe", fe_dof(fe, ref, where))
 
     el_terms = []
-    for i, es in enumerate(model.elements + model.cubics, 1):
+    for i, es in enumerate(model.elements, 1):
         where = f"[[{getattr(es.cls, 'kind', 'element')}]] {es.kwargs.get('name', i)!r}"
         terms = [(resolve(r, where), ratio) for r, ratio in es.terms]
         if all(kind == "fe" and j in held for (kind, j), _ in terms):
@@ -235,14 +236,14 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
         report["restitution_by_dof"] = {system.label(int(j)): float(r) for j, r in zip(reduced.coupling, reduced.restitution)}
         warn += list(reduced.warnings)
         # map FE drivers into the reduced system (boundary DOFs keep their labels in order)
-        Mred, Kred, Cred = red_sys.M, red_sys.K, red_sys.C
+        Mred, Kred, Cred, Hred = red_sys.M, red_sys.K, red_sys.C, red_sys.H
         dof_field, dof_x, dof_name = red_sys.dof_field, red_sys.dof_x, red_sys.dof_name
         red_constrained = red_sys.constrained
         cl = red_sys.constrained.tolist()
         idx_map = {jf: cl[list(system.constrained).index(jf)] for jf in drv_full}
     else:
         T = sp.identity(nfe, format="csr")
-        Mred, Kred, Cred = system.M, system.K, system.C
+        Mred, Kred, Cred, Hred = system.M, system.K, system.C, system.H
         dof_field, dof_x, dof_name = system.dof_field, system.dof_x, system.dof_name
         red_constrained = system.constrained
         idx_map = {jf: jf for jf in drv_full}
@@ -256,6 +257,8 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     K[:nr, :nr] = sp.csr_matrix(Kred)
     C = sp.lil_matrix((n, n))
     C[:nr, :nr] = sp.csr_matrix(Cred)
+    H = sp.lil_matrix((n, n))
+    H[:nr, :nr] = sp.csr_matrix(Hred)
     for k, b in enumerate(model.bodies):
         M[nr + k, nr + k] = b.inertia
 
@@ -280,10 +283,17 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     fields = np.concatenate([np.asarray(dof_field, dtype=object), np.full(nb, "x", dtype=object)])
     xs = np.concatenate([np.asarray(dof_x, float), np.full(nb, np.nan)])
     nm = np.concatenate([np.asarray(dof_name, dtype=object), np.array(names, dtype=object)])
-    full_sys = LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), C=sp.csr_matrix(C), dof_field=fields, dof_x=xs,
-                            dof_name=nm, constrained=red_constrained, title=model.title, physics=system.physics)
-    elements = [es.cls(g=gvec(terms), **es.kwargs) for es, terms in zip(model.elements + model.cubics, el_terms)]
-    elements, cubics = elements[:len(model.elements)], elements[len(model.elements):]
+    full_sys = LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), C=sp.csr_matrix(C), H=sp.csr_matrix(H),
+                            dof_field=fields, dof_x=xs, dof_name=nm, constrained=red_constrained, title=model.title,
+                            physics=system.physics)
+    psi_report = None
+    if full_sys.H.nnz and np.any(full_sys.H.data):
+        from fem.modelfile.build.damping import psi_viscous
+
+        full_sys, psi_report = psi_viscous(full_sys, model.damping_table, model.forcing_omegas)
+        if psi_report is not None:
+            warn += list(psi_report.warnings)
+    elements = [es.cls(g=gvec(terms), **es.kwargs) for es, terms in zip(model.elements, el_terms)]
     forces = [ExternalForce(g=gvec([(ft, 1.0)]), value=fs.value, amplitude=fs.amplitude, omega=fs.omega, phase=fs.phase)
               for fs, ft in zip(model.forces, f_terms)]
     drivers = {idx_map[jf]: law for jf, law in drv_full.items()}
@@ -311,8 +321,9 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     for k, b in enumerate(model.bodies):
         x0[nr + k], v0[nr + k] = b.x0, b.v0
     return CompiledHybrid(system=full_sys, T=T, n_fe=nr, reduced=reduced, restitution_report=report,
+                          damping_report=psi_report,
                           warnings=warn, elements=elements, drivers=drivers, forces=forces, x0=x0, v0=v0,
-                          coupling=coupling, cubics=cubics)
+                          coupling=coupling)
 
 
 def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list) -> tuple[np.ndarray, np.ndarray]:

@@ -60,63 +60,13 @@ class HybridResult:
         return self.field_history[:, j]
 
     def element_force(self, name: str) -> tuple[np.ndarray, np.ndarray]:
-        """(t, F) of element ``name`` at the solver's recorded instants: the force along s
-        (for impacts the constraint force of the persistent contact, from the equations of motion
-        of the event-driven solver; for the time stepper the mean force impulse / dt of each step)."""
-        from discrete.nonsmooth import Friction, Gap, Impact, OneSided
-
-        comp, s = self.compiled, self.solver
-        names = [el.name for el in comp.elements]
+        """(t, F) of element ``name`` at the solver's recorded instants: the force along s as the
+        solver recorded it (event-driven: the law's force or the constraint force in each recorded
+        mode; time stepper: the mean force impulse / dt of each step)."""
+        names = [el.name for el in self.compiled.elements]
         if name not in names:
             raise KeyError(f"no element {name!r}; elements: {', '.join(names[:20])}")
-        i = names.index(name)
-        el = comp.elements[i]
-        if self.method == "moreau":
-            return s.t, s.impulses[i]
-        sv = el.g @ s.x
-        if isinstance(el, Gap) and el.law == "exact":
-            F = np.where(sv > el.upper, -el.k * (sv - el.upper), np.where(sv < el.lower, -el.k * (sv - el.lower), 0.0))
-            return s.t, F
-        if isinstance(el, OneSided):
-            d = el.side * (sv - el.s_open)
-            return s.t, np.where(d > 0, -el.k * (sv - el.s_open), 0.0)
-        if isinstance(el, (Impact, Friction)):
-            # modes from the event sequence: persistent contact / stick between the switching events
-            p = comp.problem
-            F = np.zeros(s.t.size)
-            evs = [e for e in s.events if e.element == name]
-            on_kinds = ("contact_close",) if isinstance(el, Impact) else ("stick",)
-            off_kinds = ("contact_open",) if isinstance(el, Impact) else ("slip", "reversal")
-            intervals, start = [], None
-            for e in evs:
-                if e.kind in on_kinds and start is None:
-                    start = e.t
-                elif e.kind in off_kinds and start is not None:
-                    intervals.append((start, e.t))
-                    start = None
-            if start is not None:
-                intervals.append((start, np.inf))
-            f = p.f
-            for a, b in intervals:
-                ks = np.flatnonzero((s.t >= a) & (s.t <= b))
-                for k in ks:
-                    mode = [0] * len(comp.elements)
-                    mode[i] = 1 if isinstance(el, Impact) else 0
-                    for jj, other in enumerate(comp.elements):
-                        if jj != i and isinstance(other, Friction):
-                            w = other.g @ s.v[:, k] - other.surface_velocity
-                            mode[jj] = int(np.sign(w)) or 0
-                    out = p.evaluate(s.t[k], s.x[f, k][:, None], s.v[f, k][:, None], p.basis(s.t[k])[:, None],
-                                     tuple(mode))
-                    F[k] = out["F"][i, 0]
-            if isinstance(el, Friction):
-                slip = np.ones(s.t.size, dtype=bool)
-                for a, b in intervals:
-                    slip &= ~((s.t >= a) & (s.t <= b))
-                w = el.g @ s.v - el.surface_velocity
-                F = np.where(slip, el.slip_force(np.sign(w).astype(int), w, 1.0, s.t), F)
-            return s.t, F
-        raise KeyError(f"element {name!r}: no force history for {type(el).__name__}")
+        return self.solver.t, self.solver.element_forces[names.index(name)]
 
     def to_dict(self, events: bool = True) -> dict:
         d = self.solver.to_dict(events=events)

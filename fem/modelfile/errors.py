@@ -6,8 +6,7 @@ from __future__ import annotations
 
 import difflib
 import types
-import typing
-from typing import Annotated, Any, Literal, Union, get_args, get_origin
+from typing import Annotated, Literal, Union, get_args, get_origin
 
 import annotated_types as at
 from pydantic import BaseModel, ValidationError

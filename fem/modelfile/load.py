@@ -3,7 +3,6 @@ its kind; the typed document is what every builder consumes."""
 from __future__ import annotations
 
 import json
-import warnings
 from pathlib import Path
 
 from pydantic import ValidationError
@@ -13,10 +12,6 @@ from discrete.errors import ModelError
 from .errors import to_model_error
 from .schema.document import HINTS, KINDS, detect_kind
 from .source import read_toml
-
-
-class ModelDeprecationWarning(UserWarning):
-    """An old spelling or an implicit default of a model file that still works, naming the new key."""
 
 
 def load(path: str | Path):
@@ -69,10 +64,6 @@ def schema_json(kind: str | None = None) -> dict:
                "$defs": defs | {f"{k}_file": s for k, s in parts.items()}}
     out["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     return out
-
-
-def warn_deprecated(where: str, message: str) -> None:
-    warnings.warn(f"{where}: {message}", ModelDeprecationWarning, stacklevel=3)
 
 
 SCHEMA_FILE = Path(__file__).resolve().parent / "drivefem.schema.json"

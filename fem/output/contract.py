@@ -84,6 +84,7 @@ def forced_data(study, res) -> dict:
                   "amplitude": [res.response], "phase_lag_deg": None, "response": None,
                   "damping": None, "warnings": d.get("warnings", [])})
         d["steady"] = True
+        d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
         return d
     if study.kind == "drive":
         d = res.to_dict()
@@ -109,4 +110,6 @@ def forced_data(study, res) -> dict:
 
 # ------------------------------------------------------------------ simulate
 def simulate_data(study, res) -> dict:
-    return res.to_dict()
+    d = res.to_dict()
+    d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
+    return d

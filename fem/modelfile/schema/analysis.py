@@ -97,9 +97,24 @@ class Damping(Table):
     """Modal damping ratio."""
     psi: NonNegative = 0.0
     """Dissipation coefficient of the textbook (delta = psi / (4 pi))."""
+    psi_time: Literal["equivalent", "modal"] | None = None
+    """Time domain: how psi (of [damping], segments and springs) becomes a viscous matrix: "equivalent"
+    (9.3) C = H / omega_ref, or "modal" (9.14)-(9.18) (default: equivalent at the single forcing frequency,
+    else modal)."""
+    omega_ref: Positive | Literal["forcing", "first_mode"] | None = None
+    """Time domain, psi_time = "equivalent": the reference frequency, rad/s, "forcing" or "first_mode"."""
+    psi_modes: Count | None = None
+    """Time domain, psi_time = "modal": modes of the modal dissipation (default: all up to 200 DOFs, else 20)."""
+    psi_completion: Literal["stiffness", "none"] = "stiffness"
+    """Time domain, psi_time = "modal": the modes not included get the stiffness-proportional remainder, or none."""
 
     @model_validator(mode="after")
     def _keys_match(self):
+        if self.omega_ref is not None and self.psi_time == "modal":
+            rule("omega_ref", self.omega_ref, "only with psi_time = 'equivalent'")
+        for key in ("psi_modes", "psi_completion"):
+            if self.given(key) and self.psi_time == "equivalent":
+                rule(key, getattr(self, key), "only with psi_time = 'modal'")
         given = [k for k in ("alpha", "beta", "zeta", "psi") if self.given(k)]
         kind = self.kind
         for k in given:

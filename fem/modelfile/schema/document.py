@@ -13,14 +13,14 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from pydantic import Field, model_validator
+from pydantic import Field, create_model, model_validator
 
 from discrete.errors import ModelError
 
 from .analysis import Analysis, BaseMotion, Damping, ForcedAnalysis, Load, Response
 from .base import Table, rule
 from .drive import Drive
-from .elements import CubicSpring, DistributedFriction, Force, Friction, Gap, Impact, OneSided
+from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
 from .simulation import Constants, Initial, Reduction, Simulation
@@ -78,17 +78,7 @@ class LumpedTables(Table):
     """[[damper]]: viscous dampers."""
 
 
-class ElementTables(Table):
-    friction: _array(Friction)
-    """[[friction]]: Coulomb friction with stick-slip."""
-    one_sided: _array(OneSided)
-    """[[one_sided]]: tension-only or compression-only springs."""
-    gap: _array(Gap)
-    """[[gap]]: clearances, backlash and elastic stops."""
-    impact: _array(Impact)
-    """[[impact]]: rigid stops with restitution."""
-    cubic_spring: _array(CubicSpring)
-    """[[cubic_spring]]: smooth cubic springs (harmonic balance)."""
+class TimeTables(Table):
     force: _array(Force)
     """[[force]]: external forces in time."""
     constants: Constants = Constants()
@@ -99,6 +89,19 @@ class ElementTables(Table):
     """[steady]: nonlinear amplitude-frequency curve (drivefem forced)."""
     sweep: Sweep | None = None
     """[sweep]: parameter map (drivefem sweep)."""
+
+
+def _summary(name: str, cls) -> str:
+    """``[[name]]: <first sentence of the table's docstring>``."""
+    text = " ".join((cls.__doc__ or "").split()).removeprefix(f"``[[{name}]]``:").strip()
+    return f"[[{name}]]: " + text.split(". ")[0].rstrip(".") + "."
+
+
+ElementTables = create_model(
+    "ElementTables", __base__=TimeTables,
+    **{name: (list[cls], Field(default_factory=list, description=_summary(name, cls)))
+       for name, cls in ELEMENT_TABLES.items()})
+"""The element tables (one per registered element, :func:`.elements.element_table`) and the time tables."""
 
 
 def _frequencies_rule(doc) -> None:

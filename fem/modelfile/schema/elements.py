@@ -4,12 +4,29 @@
 :class:`Coordinate` (see docs/discrete.md and docs/hybrid.md for the laws)."""
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
+from discrete.errors import ModelError
+from discrete.nonsmooth import elements as E
+
+from ..deprecation import warn_deprecated
 from .base import Fraction, NonNegative, Positive, Table, rule
 from .lumped import Ends, Ratios
+
+ELEMENT_TABLES: dict[str, type] = {}
+"""{table name: schema class} of the element tables, in the order the solvers list the elements."""
+
+
+def element_table(name: str):
+    """Register a schema class as the model-file table ``[[name]]`` of an element: it gets a field of
+    that name in lumped and hybrid files, and its ``element()`` builds the element."""
+    def deco(cls):
+        setattr(cls, "table_name", name)
+        ELEMENT_TABLES[name] = cls
+        return cls
+    return deco
 
 
 class Coordinate(Table):
@@ -46,11 +63,17 @@ class Coordinate(Table):
             rule("dof", self.dof, "only with x = .. (an FE node)")
         return self
 
+    def element(self, where: str, kind: str, weight=None) -> tuple[type, dict, bool]:
+        """(element class, keyword arguments without name and g, whether s is negated); ``kind``: the
+        kind of file (for legacy defaults), ``weight(table, where)``: (g m, m, dm/dt) of a body."""
+        raise NotImplementedError
+
     def _require_where(self):
         if self.body is None and self.x is None and self.between is None:
             rule("body", None, "body = \"name\", x = .. (FE node) or between = [\"a\", \"b\"] (required)")
 
 
+@element_table("friction")
 class Friction(Coordinate):
     """``[[friction]]``: Coulomb friction with breakaway above the kinetic level and an optionally
     moving counter-surface (seed 000 (1), textbook (8.34), seed 002 (1)).  Slip force
@@ -103,7 +126,26 @@ class Friction(Coordinate):
                 rule("static", self.static, f"a number >= the kinetic level {self.kinetic!r}")
         return self
 
+    def levels(self, where: str, weight=None) -> dict:
+        """Kinetic and static levels (and the variable-weight data of normal = "weight")."""
+        if self.normal == "given":
+            warn_deprecated(where, "normal = \"given\" is the default: omit normal (levels kinetic/static)")
+        if self.normal is None or self.normal == "given":
+            return dict(kinetic=self.kinetic, static=self.kinetic if self.static is None else self.static)
+        mus = self.mu if self.mu_static is None else self.mu_static
+        if self.normal == "weight":
+            if weight is None:
+                raise ModelError(where, "normal", "weight", "a normal force (a number) in this kind of model")
+            w, m0, rate = weight(self, where)
+            return dict(kinetic=self.mu * w, static=mus * w, mass0=m0, mass_rate=rate)
+        return dict(kinetic=self.mu * self.normal, static=mus * self.normal)
 
+    def element(self, where, kind, weight=None):
+        return E.Friction, dict(self.levels(where, weight), viscous=self.viscous, quadratic=self.quadratic,
+                                cubic=self.cubic, surface_velocity=self.surface_velocity, restick=self.restick), False
+
+
+@element_table("one_sided")
 class OneSided(Coordinate):
     """``[[one_sided]]``: one-sided spring with preload -- a tension-only strand or a
     compression-only support (seed 002 (1)-(2))."""
@@ -115,12 +157,24 @@ class OneSided(Coordinate):
     side: Literal["tension", "compression"] | None = None
     """Which side carries load: "tension" (engaged when stretched) or "compression"."""
 
+    LEGACY_SIDE: ClassVar[dict] = {"lumped": "tension", "hybrid": "compression"}
+
     @model_validator(mode="after")
     def _where_given(self):
         self._require_where()
         return self
 
+    def element(self, where, kind, weight=None):
+        side = self.side
+        if side is None:
+            side = self.LEGACY_SIDE[kind]
+            warn_deprecated(where, f"side is not given: it defaults to {side!r} in {kind} files for now; "
+                            "write side = \"tension\" or side = \"compression\"")
+        sgn = 1 if side == "tension" else -1
+        return E.OneSided, dict(k=self.k, s_open=-sgn * self.preload / self.k, side=sgn), False
 
+
+@element_table("gap")
 class Gap(Coordinate):
     """``[[gap]]``: clearance/backlash (11.1): no force for lower <= s <= upper, spring k beyond.
     A lone ``lower`` or ``upper`` is a stop: the spring engaged beyond that bound only.
@@ -158,7 +212,15 @@ class Gap(Coordinate):
         """A lone bound: a one-sided stop."""
         return self.delta is None and (self.lower is None) != (self.upper is None)
 
+    def element(self, where, kind, weight=None):
+        if self.stop:
+            side, bound = (1, self.upper) if self.upper is not None else (-1, self.lower)
+            return E.OneSided, dict(k=self.k, s_open=bound, side=side), False
+        lower, upper = (-self.delta, self.delta) if self.delta is not None else (self.lower, self.upper)
+        return E.Gap, dict(k=self.k, lower=lower, upper=upper, law=self.law, L=self.L), False
 
+
+@element_table("impact")
 class Impact(Coordinate):
     """``[[impact]]``: rigid unilateral stop s >= stop (side "lower") or s <= stop ("upper") with
     Newton's restitution."""
@@ -177,7 +239,13 @@ class Impact(Coordinate):
         self._require_where()
         return self
 
+    def element(self, where, kind, weight=None):
+        upper = self.side == "upper"           # s <= stop  <=>  -s >= -stop
+        return E.Impact, dict(s_min=-self.stop if upper else self.stop, restitution=self.restitution,
+                              v_rest=self.v_rest), upper
 
+
+@element_table("cubic_spring")
 class CubicSpring(Coordinate):
     """``[[cubic_spring]]``: smooth cubic spring, force along s -k3 s^3 (textbook (8.20))."""
 
@@ -188,6 +256,9 @@ class CubicSpring(Coordinate):
     def _where_given(self):
         self._require_where()
         return self
+
+    def element(self, where, kind, weight=None):
+        return E.Cubic, dict(k3=self.k3), False
 
 
 class Force(Coordinate):
@@ -244,5 +315,36 @@ class DistributedFriction(Table):
         return self
 
 
-ELEMENT_TABLES = {"friction": Friction, "one_sided": OneSided, "gap": Gap, "impact": Impact}
-"""The nonsmooth element tables, in the order the solvers list their elements."""
+@element_table("contact")
+class Contact(Coordinate):
+    """``[[contact]]``: a contact with stiffness and damping switched on at closure (textbook §11.2-11.3,
+    (11.4)): no force for lower <= s <= upper, beyond it F = -k d - c s' on the penetration d.  A lone
+    ``lower`` or ``upper`` is a stop."""
+
+    k: Positive
+    """Contact stiffness."""
+    c: NonNegative = 0.0
+    """Contact damping (a dashpot acting only in contact)."""
+    delta: NonNegative | None = None
+    """Half the clearance of a symmetric gap: lower = -delta, upper = delta."""
+    lower: float | None = None
+    """Lower bound of the clearance."""
+    upper: float | None = None
+    """Upper bound of the clearance."""
+
+    @model_validator(mode="after")
+    def _bounds(self):
+        self._require_where()
+        if self.delta is not None and (self.lower is not None or self.upper is not None):
+            rule("delta", self.delta, "either delta (symmetric) or lower/upper")
+        if self.delta is None and self.lower is None and self.upper is None:
+            rule("delta", None, "delta = .. or lower = .. / upper = .. (the clearance or the stop)")
+        if self.lower is not None and self.upper is not None and self.lower > self.upper:
+            rule("lower", self.lower, f"a number <= upper = {self.upper!r}")
+        return self
+
+    def element(self, where, kind, weight=None):
+        inf = float("inf")
+        lower, upper = (-self.delta, self.delta) if self.delta is not None else (
+            -inf if self.lower is None else self.lower, inf if self.upper is None else self.upper)
+        return E.Contact, dict(k=self.k, c=self.c, lower=lower, upper=upper), False

@@ -1,7 +1,7 @@
 """``[steady]`` (nonlinear amplitude-frequency curves) and ``[sweep]`` (parameter maps on Dask)."""
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 

@@ -1,0 +1,290 @@
+"""Factorise a sparse symmetric matrix with the best available direct solver, and say which.
+
+Shift-invert eigen-solvers spend their time in one factorisation of ``A = K - sigma M`` and a few
+dozen solves with it.  SuperLU (scipy's default) is a general LU with a column ordering (COLAMD)
+and partial pivoting; on 3D quadratic elements it fills twice as much as a symmetric
+factorisation with nested-dissection ordering, and runs on one core.  Measured on the 105k-DOF
+solid shaft of ``benchmarks/solid.py`` (27-node hexahedra, 2-core machine; ``docs/solid.md``):
+
+================================  =================  =========  ===========  ==============
+library (ordering)                nnz of the factor  factorise  one solve    peak memory
+================================  =================  =========  ===========  ==============
+SuperLU (COLAMD), LU              112 M              6.8 s      0.09 s       2.7 GB
+CHOLMOD 3.0 (METIS), LL^T         53 M               6.8 s      0.13 s       1.5 GB
+MUMPS 5.5 seq. (SCOTCH), LDL^T    70 M               4.7 s      0.10 s       1.1 GB
+MKL PARDISO (METIS), LDL^T        55 M               2.2 s      0.05 s       1.2 GB
+================================  =================  =========  ===========  ==============
+
+(factorise = ordering + symbolic + numerical; CHOLMOD and MUMPS are Debian's builds on OpenBLAS.)
+MKL PARDISO is used when the optional package ``pypardiso`` (which brings Intel's ``mkl``) is
+installed and the matrix has at least :data:`AUTO_MIN_SIZE` rows; SuperLU otherwise, called
+exactly as before, so smaller models give bit-identical results whether or not MKL is there.
+
+PARDISO runs as a symmetric *indefinite* LDL^T (``mtype = -2``, Bunch-Kaufman pivoting within
+supernodes, METIS nested dissection): the same code for a positive definite ``K``, for ``K + tau M``
+(free systems) and for an indefinite ``K - sigma M`` (a shift inside the spectrum), and the pivots
+give the inertia (Sylvester's law: the number of negative pivots is the number of eigenvalues
+below ``sigma``).  Where a pivot is tiny PARDISO does not stop but replaces it by
+``1e-8 ||A||`` ("perturbed pivot"), i.e. factorises a nearby matrix; such a factorisation is thrown
+away and SuperLU (threshold partial pivoting) used instead, with a note saying so.  Only the
+upper triangle of ``A`` is read: ``A`` must be symmetric.
+
+pypardiso locates MKL's runtime library (pip wheel, conda or system); its own ``solve`` re-checks
+the whole matrix and copies its index arrays on every call (18 ms here, a third of a solve), so
+the factorisation calls MKL's documented ``pardiso`` entry point through ctypes with the arrays
+kept alive, and releases MKL's memory when the factorisation is garbage-collected.
+"""
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import os
+import weakref
+from functools import cached_property, lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..errors import ModelError, SolverError
+
+#: smallest matrix (rows) factorised by the fast library under ``solver="auto"``.  Below it a
+#: modal solve takes seconds either way, and every model of the validation catalogue stays
+#: below it (largest: rotor-vs-3d-solid, 25 899 DOFs), so the catalogue's numbers are the same
+#: to the bit with and without MKL (docs/solid.md).
+AUTO_MIN_SIZE = 30_000
+
+SOLVERS = ("auto", "superlu", "pardiso")
+#: environment variable that overrides the default choice (one of :data:`SOLVERS`)
+ENV = "DRIVEFEM_SPARSE_DIRECT"
+_preferred: list[str] = []
+
+
+class SingularMatrixError(SolverError):
+    """The matrix is exactly singular (a zero pivot that no pivoting avoids)."""
+
+
+class Factorisation:
+    """A factorised square matrix.  ``solve(b)`` for ``b`` of shape ``(n,)`` or ``(n, m)``.
+
+    ``solver``: the library ("SuperLU" or "MKL PARDISO"); ``kind``: "LU" or "LDL^T";
+    ``inertia``: (positive, negative) pivots where the library counts them, else None;
+    ``notes``: why a faster library was not used, if it was tried."""
+
+    def __init__(self, solver, kind, n, solve, pivots, inertia=None, notes=()):
+        self.solver, self.kind, self.n = solver, kind, n
+        self._solve, self._pivots = solve, pivots
+        self.inertia = inertia
+        self.notes = list(notes)
+
+    @property
+    def name(self) -> str:
+        return f"{self.solver} {self.kind}"
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        return self._solve(b)
+
+    @cached_property
+    def pivot_ratio(self) -> float:
+        """Smallest over largest pivot magnitude (computed on first use: for SuperLU it copies U)."""
+        piv = np.abs(self._pivots())
+        return float(piv.min() / piv.max())
+
+    def __repr__(self) -> str:
+        return f"Factorisation({self.name}, n={self.n})"
+
+
+# ------------------------------------------------------------------ choice
+@contextlib.contextmanager
+def preferred_solver(name: str):
+    """Within the block, ``factorize(..., solver="auto")`` uses ``name`` (one of :data:`SOLVERS`);
+    benchmarks use it to time SuperLU and PARDISO on the same model."""
+    _check_name(name, "solver")
+    _preferred.append(name)
+    try:
+        yield
+    finally:
+        _preferred.pop()
+
+
+def _check_name(name, key):
+    if name not in SOLVERS:
+        raise ModelError("sparse direct solver", key, name, " | ".join(SOLVERS))
+
+
+def available_solvers() -> list[str]:
+    """The libraries importable here, in order of preference."""
+    return (["pardiso"] if _mkl() is not None else []) + ["superlu"]
+
+
+def choose(n: int, solver: str = "auto") -> str:
+    """The library ``factorize`` uses for an n x n matrix: "pardiso" or "superlu"."""
+    _check_name(solver, "solver")
+    if solver == "auto":
+        solver = _preferred[-1] if _preferred else os.environ.get(ENV, "auto")
+        _check_name(solver, ENV)
+    if solver == "auto":
+        solver = "pardiso" if n >= AUTO_MIN_SIZE and _mkl() is not None else "superlu"
+    elif solver == "pardiso" and _mkl() is None:
+        raise ModelError("sparse direct solver", "solver", "pardiso",
+                         "'superlu' or 'auto' (MKL PARDISO is not installed: pip install pypardiso)")
+    return solver
+
+
+def factorize(A: sp.spmatrix, solver: str = "auto") -> Factorisation:
+    """Factorise the symmetric sparse matrix ``A`` (see the module notes for the choice).
+
+    Raises :class:`SingularMatrixError` if ``A`` is exactly singular, :class:`SolverError` if
+    MKL PARDISO runs out of memory (SuperLU would need more)."""
+    n = A.shape[0]
+    if choose(n, solver) == "pardiso":
+        try:
+            return _pardiso(A)
+        except _Rejected as why:
+            return _superlu(A, notes=[f"MKL PARDISO not used: {why}; SuperLU instead"])
+    return _superlu(A)
+
+
+# ------------------------------------------------------------------ SuperLU
+def _superlu(A, notes=()) -> Factorisation:
+    try:
+        lu = spla.splu(sp.csc_matrix(A))
+    except RuntimeError as exc:                    # "Factor is exactly singular"
+        raise SingularMatrixError(f"SuperLU: {exc}") from exc
+    return Factorisation("SuperLU", "LU", A.shape[0], lu.solve, lambda: lu.U.diagonal(), notes=notes)
+
+
+# ------------------------------------------------------------------ MKL PARDISO
+class _Rejected(Exception):
+    """PARDISO's factorisation is not used (perturbed pivots, an internal error)."""
+
+
+_P = ctypes.c_void_p
+_ERRORS = {-1: "input inconsistent", -2: "not enough memory", -3: "reordering problem",
+           -4: "zero pivot", -5: "unclassified internal error", -6: "reordering failed",
+           -7: "diagonal matrix is singular", -8: "32-bit integer overflow", -9: "not enough memory for OOC",
+           -10: "error opening OOC files", -11: "read/write error with OOC files"}
+MTYPE = -2                                         # real symmetric indefinite
+
+
+@lru_cache(maxsize=1)
+def _mkl():
+    """MKL's ``pardiso`` and ``pardiso_getdiag`` entry points, or None if not installed."""
+    try:
+        import pypardiso
+        lib = pypardiso.PyPardisoSolver().libmkl
+    except (ImportError, OSError, AttributeError):
+        return None
+    proto = ctypes.CFUNCTYPE(None, *([_P] * 16))
+    getdiag = ctypes.CFUNCTYPE(None, _P, _P, _P, _P, _P)
+    try:
+        return proto(("pardiso", lib)), getdiag(("pardiso_getdiag", lib))
+    except AttributeError:
+        return None
+
+
+def _upper_csr(A):
+    """Upper triangle of ``A`` in CSR with int32 indices, sorted, every diagonal entry stored
+    (PARDISO's input for symmetric matrices, zero-based)."""
+    A = sp.csr_matrix(A, dtype=float)
+    if not A.has_canonical_format:
+        A = A.copy()
+        A.sum_duplicates()
+    n = A.shape[0]
+    rows = np.repeat(np.arange(n, dtype=np.int32), np.diff(A.indptr))
+    keep = A.indices >= rows
+    rows, cols, data = rows[keep], A.indices[keep], A.data[keep]
+    has_diag = np.zeros(n, dtype=bool)
+    has_diag[rows[cols == rows]] = True
+    if not has_diag.all():                          # explicit zeros on the missing diagonal
+        miss = np.flatnonzero(~has_diag).astype(np.int32)
+        U = sp.coo_matrix((np.concatenate([data, np.zeros(miss.size)]),
+                           (np.concatenate([rows, miss]), np.concatenate([cols, miss]))), shape=(n, n)).tocsr()
+        U.sum_duplicates()
+        return U.indptr.astype(np.int32), U.indices.astype(np.int32), np.ascontiguousarray(U.data)
+    indptr = np.zeros(n + 1, dtype=np.int32)
+    np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
+    return indptr, np.ascontiguousarray(cols, dtype=np.int32), np.ascontiguousarray(data)
+
+
+class _PardisoHandle:
+    """One PARDISO factorisation (its internal handle ``pt`` and the arrays it refers to)."""
+
+    def __init__(self, A):
+        self.fn, self.getdiag = _mkl()
+        self.n = n = A.shape[0]
+        self.ia, self.ja, self.a = _upper_csr(A)
+        self.pt = np.zeros(64, dtype=np.int64)
+        self.iparm = ip = np.zeros(64, dtype=np.int32)
+        ip[0] = 1           # these values, not the defaults
+        ip[1] = 2           # METIS nested dissection
+        ip[9] = 8           # pivot perturbation 1e-8 (the default for symmetric indefinite)
+        ip[10] = 0          # no scaling ...
+        ip[12] = 0          # ... nor weighted matching (symmetric indefinite default off)
+        ip[20] = 1          # Bunch-Kaufman 1x1 and 2x2 pivots
+        ip[34] = 1          # zero-based indices
+        ip[55] = 1          # keep the pivots for pardiso_getdiag
+        self._call(12, np.zeros(n), np.zeros(n), 1)              # analysis + numerical factorisation
+        weakref.finalize(self, _release, self.fn, self.pt, self.iparm)
+        self.perturbed = int(ip[13])
+        self.inertia = (int(ip[21]), int(ip[22]))
+
+    def _call(self, phase, b, x, nrhs):
+        err = ctypes.c_int32(0)
+        i32 = ctypes.c_int32
+        self.fn(_P(self.pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(MTYPE)),
+                ctypes.byref(i32(phase)), ctypes.byref(i32(self.n)), _P(self.a.ctypes.data), _P(self.ia.ctypes.data),
+                _P(self.ja.ctypes.data), None, ctypes.byref(i32(nrhs)), _P(self.iparm.ctypes.data),
+                ctypes.byref(i32(0)), _P(b.ctypes.data), _P(x.ctypes.data), ctypes.byref(err))
+        if err.value:
+            if phase == 12:
+                _release(self.fn, self.pt, self.iparm)
+            msg = f"MKL PARDISO error {err.value} ({_ERRORS.get(err.value, 'see the MKL manual')})"
+            if err.value in (-2, -8, -9):
+                raise SolverError(f"{msg} factorising a {self.n} x {self.n} matrix with "
+                                  f"{self.a.size} stored entries (upper triangle)")
+            if phase == 12:
+                raise _Rejected(msg)
+            raise SolverError(msg)
+
+    def solve(self, b):
+        b = np.asarray(b, dtype=float)
+        if b.shape[0] != self.n or b.ndim > 2:
+            raise ValueError(f"right-hand side of shape {b.shape} for a {self.n} x {self.n} factorisation")
+        nrhs = 1 if b.ndim == 1 else b.shape[1]
+        b = np.asfortranarray(b)                    # column-major for several right-hand sides
+        x = np.empty_like(b, order="F")
+        if nrhs:
+            self._call(33, b, x, nrhs)
+        return x
+
+    def pivots(self):
+        df, da = np.zeros(self.n), np.zeros(self.n)
+        err = ctypes.c_int32(0)
+        self.getdiag(_P(self.pt.ctypes.data), _P(df.ctypes.data), _P(da.ctypes.data),
+                     ctypes.byref(ctypes.c_int32(1)), ctypes.byref(err))
+        if err.value:
+            raise SolverError(f"MKL pardiso_getdiag error {err.value}")
+        return df
+
+
+def _release(fn, pt, iparm):
+    """Free MKL's memory of the factorisation ``pt`` (phase -1); idempotent."""
+    if not pt.any():
+        return
+    err = ctypes.c_int32(0)
+    i32 = ctypes.c_int32
+    dummy = np.zeros(1)
+    fn(_P(pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(MTYPE)),
+       ctypes.byref(i32(-1)), ctypes.byref(i32(1)), _P(dummy.ctypes.data), None, None, None, ctypes.byref(i32(1)),
+       _P(iparm.ctypes.data), ctypes.byref(i32(0)), _P(dummy.ctypes.data), _P(dummy.ctypes.data), ctypes.byref(err))
+    pt[:] = 0
+
+
+def _pardiso(A) -> Factorisation:
+    h = _PardisoHandle(A)
+    if h.perturbed:
+        _release(h.fn, h.pt, h.iparm)
+        raise _Rejected(f"{h.perturbed} pivot(s) below 1e-8 ||A|| were perturbed (nearly singular or "
+                        f"strongly indefinite matrix)")
+    return Factorisation("MKL PARDISO", "LDL^T", h.n, h.solve, h.pivots, inertia=h.inertia)

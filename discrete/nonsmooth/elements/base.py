@@ -1,0 +1,131 @@
+"""The element protocol: what every nonlinear element of a drive provides to the solvers.
+
+An element acts on the coordinate ``s = g . x`` (x: every DOF, drivers included) and applies the
+force ``F`` along s (``g F`` on the DOFs).  It owns its law in every form a solver needs:
+
+* the event-driven solver (exact pieces): its modes (small integers), the initial mode from (s, s'),
+  which modes are constraints (stick, persistent contact: a Lagrange row with force ``lam``), the
+  force along s in a free mode (affine in (s, s', e0) in an affine element, e0 the constant basis
+  function of the exogenous state), the guard functions of the current mode (admissible while >= 0,
+  an event at a zero crossing) and the event rule that picks the next mode and projects the state;
+* the energy balance: the potential energy (conservative elements) or the work category of its
+  power ("friction", "contacts", "elements");
+* the smooth (regularised) law of the regularised integrator and of harmonic balance (AFT);
+* the Moreau-Jean time stepper: the impulse of one step given the local free velocity.
+
+The solvers loop over the elements and call these methods; none of them looks at the element's
+type.  A smooth nonlinear spring is an element with a smooth force only (``event_driven`` False
+and no modes).  Arrays: s, sd, e0 have one value per evaluation point (the solvers evaluate many
+states at once).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ModelError
+
+#: the power categories of the energy balance (keys of Problem.power_parts)
+WORK = ("conservative", "friction", "contacts", "elements")
+
+
+@dataclass
+class Element:
+    """Base of the nonlinear elements (see the module docstring for the protocol)."""
+
+    name: str
+    g: np.ndarray
+
+    kind = "element"              # the model-file table of the element
+    work = "elements"             # power category ("conservative": counted through its potential)
+    event_driven = True           # has modes and events (False: a smooth law only)
+    smoothness = 2                # 0: discontinuous law (friction), 1: kinked (contact), 2: smooth
+    unilateral = False            # a constraint whose force must stay >= 0 (persistent contact)
+
+    # ------------------------------------------------------------ event-driven solver
+    @property
+    def affine(self) -> bool:
+        """The force is affine in (s, s', e0) in every mode (exact pieces propagate by expm)."""
+        return True
+
+    def initial_mode(self, s: float, sd: float, scale_v: float) -> int:
+        """The mode of a state (s, s') at the start (``scale_v``: the state's velocity scale)."""
+        return 0
+
+    def is_constraint(self, mode: int) -> bool:
+        """Whether ``mode`` holds s' (or s) by a constraint force (a Lagrange row)."""
+        return False
+
+    def force(self, mode: int, s, sd, e0, t):
+        """Force along s in a free mode (None: zero)."""
+        return None
+
+    def guards(self, mode: int, s, sd, F, e0, t) -> list:
+        """[(guard values, tag)]: admissible while >= 0; an event when one crosses zero."""
+        return []
+
+    def constraint_excess(self, lam: float, t: float, limit, force_tol: float) -> float:
+        """How far the constraint force ``lam`` lies outside its admissible set (> 0: release)."""
+        return -1.0
+
+    def released_mode(self, lam: float) -> int:
+        """The mode after releasing the constraint with force ``lam``."""
+        return 0
+
+    def release_event(self) -> str:
+        """The event kind recorded when the element leaves a constraint without its own event."""
+        return "contact_open"
+
+    def on_event(self, tag: str, ctx) -> None:
+        """Apply the element's rule for the guard ``tag`` at an event (through ``ctx``)."""
+
+    def potential(self, s, mode):
+        """Potential energy (conservative elements; elements with ``has_potential``)."""
+        return 0.0 * s
+
+    @property
+    def has_potential(self) -> bool:
+        """The element stores energy (its potential is part of the mechanical energy)."""
+        return self.work == "conservative"
+
+    def split_force(self, mode, sd, F):
+        """(conservative part, dissipative part) of the force F along s for the energy balance: the
+        first is -dV/ds of the potential, the second does the work of the category ``work`` (None:
+        no such part)."""
+        return (F, None) if self.work == "conservative" else (None, F)
+
+    def stiffness(self) -> float:
+        """The largest stiffness the element adds to s (for the time scale of the model)."""
+        return 0.0
+
+    def velocity_scale(self) -> float:
+        """A velocity scale of the element's own (a moving counter-surface)."""
+        return 0.0
+
+    soft_start_tags = ()          # guards that, starting on their boundary, fire only once clearly crossed
+
+    # ------------------------------------------------------------ smooth laws
+    def smooth_force(self, s, sd, eps: float):
+        """(F, dF/ds, dF/ds') of the smooth or regularised law (harmonic balance)."""
+        raise ModelError(f"element {self.name!r}", "kind", self.kind,
+                         "an element with a smooth force law for harmonic balance (use shooting)")
+
+    smooth_law = True
+    """Whether :meth:`smooth_force` exists (harmonic balance can use the element)."""
+
+    n_memory = 0
+    """Internal states of the regularised law (friction's rest memory)."""
+
+    def regularised_force(self, s, sd, t, memory, settings) -> tuple:
+        """(F, d memory/dt) of the regularised integrator's law; ``settings``: eps, eps_m, tau, tau_f,
+        penalty and the effective mass of s (a function)."""
+        F, _, _ = self.smooth_force(np.asarray(s, float), np.asarray(sd, float), settings["eps"])
+        return float(F), np.zeros(0)
+
+    # ------------------------------------------------------------ Moreau-Jean time stepping
+    def moreau(self, h: float, theta: float):
+        """The element's law of one Moreau-Jean step (:class:`discrete.timestepping.moreau.StepLaw`),
+        or an error naming the element if it has none."""
+        raise ModelError(f"element {self.name!r}", "kind", self.kind, "an element with a Moreau-Jean law "
+                         "(use method = 'event')")

@@ -1,0 +1,151 @@
+"""Coulomb friction with a breakaway limit above the kinetic level (seed 000 (1); textbook (8.34);
+seed 002 (1)) and an optionally moving counter-surface."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ModelError
+from .base import Element
+
+
+@dataclass
+class Friction(Element):
+    """Relative slip velocity ``w = s' - surface_velocity`` (clutch at omega0 of seed 002, belt).
+    Modes: +1 / -1 slip, 0 stick.
+
+    Slip force ``F = -sign(w) (a0 + a1 |w| + a2 w^2 + a3 |w|^3)``: ``a0`` the kinetic level, ``a1``
+    viscous, ``a2`` the quadratic term of the combined law B1 sign v + B2 v + B3 sign(v) v^2 of
+    seed 002 (a0 = B1, a1 = B2, a2 = B3); ``a3`` allows the cubic falling/rising characteristic
+    of (8.48).  Stick: ``w = 0`` enforced exactly by a constraint force ``lam``; breakaway when
+    ``|lam|`` reaches ``static``.  At a momentary stop during slip the body sticks if
+    ``|lam| <= static`` (restick = "static") or ``|lam| <= a0`` (restick = "kinetic", seed 000:
+    otherwise the velocity reverses at once).  ``mass0``/``mass_rate`` (normal = "weight"): the
+    levels are scaled by the current inertia m(t)/mass0 (seed 004 §2).
+    """
+
+    kinetic: float = 0.0
+    static: float | None = None
+    viscous: float = 0.0
+    quadratic: float = 0.0
+    cubic: float = 0.0
+    surface_velocity: float = 0.0
+    restick: str = "static"
+    mass0: float | None = None
+    mass_rate: float = 0.0
+
+    kind = "friction"
+    work = "friction"
+    smoothness = 0
+    soft_start_tags = ("stop",)
+
+    def __post_init__(self):
+        where = f"[[friction]] {self.name!r}"
+        if self.static is None:
+            self.static = self.kinetic
+        if not self.kinetic >= 0:
+            raise ModelError(where, "kinetic", self.kinetic, "a number >= 0")
+        if not self.static >= self.kinetic:
+            raise ModelError(where, "static", self.static, f"a number >= the kinetic level {self.kinetic!r}")
+        if self.restick not in ("static", "kinetic"):
+            raise ModelError(where, "restick", self.restick, "'static' | 'kinetic'")
+
+    # ------------------------------------------------------------ the law
+    @property
+    def affine(self) -> bool:
+        return self.quadratic == 0.0 and self.cubic == 0.0 and self.mass_rate == 0.0
+
+    def scale(self, t):
+        """Factor m(t)/mass0 for normal = "weight" (1 otherwise)."""
+        if self.mass0 is None or self.mass_rate == 0.0:
+            return 1.0
+        return (self.mass0 + self.mass_rate * t) / self.mass0
+
+    def levels(self, t) -> tuple[float, float]:
+        f = self.scale(t)
+        return self.kinetic * f, self.static * f
+
+    def slip_force(self, sgn: int, w, e0, t):
+        """Force along s in slip mode ``sgn`` (linear in (w, e0) when ``affine``)."""
+        fk = self.levels(t)[0]
+        return -sgn * fk * e0 - self.viscous * w - sgn * self.quadratic * w * w - sgn * self.cubic * w * w * np.abs(w)
+
+    # ------------------------------------------------------------ event-driven solver
+    def initial_mode(self, s, sd, scale_v):
+        w = sd - self.surface_velocity
+        return 0 if abs(w) <= 1e-14 * max(scale_v, abs(self.surface_velocity), 1.0) else int(np.sign(w))
+
+    def is_constraint(self, mode):
+        return mode == 0
+
+    def force(self, mode, s, sd, e0, t):
+        if mode != 0:
+            return self.slip_force(mode, sd - self.surface_velocity * e0, e0, t)
+        return None
+
+    def guards(self, mode, s, sd, F, e0, t):
+        fk, fs = self.levels(t)
+        if mode != 0:
+            return [(mode * (sd - self.surface_velocity * e0), "stop")]
+        return [(fs * e0 - F, "break-"), (fs * e0 + F, "break+")]
+
+    def constraint_excess(self, lam, t, limit, force_tol):
+        lim = self.levels(t)[1] if limit is None else limit
+        return (abs(lam) - lim) / max(lim, abs(lam) * 1e-12, 1e-300)
+
+    def released_mode(self, lam):
+        return -int(np.sign(lam)) or 1
+
+    def release_event(self) -> str:
+        return "slip"
+
+    def on_event(self, tag, ctx):
+        if tag == "stop":
+            ctx.project_velocity(self.surface_velocity)
+            ctx.mode = 0
+            fk, fs = self.levels(ctx.t)
+            ctx.limit = fs if self.restick == "static" else fk
+            ctx.record("stop")                   # becomes "stick" or "reversal" once the mode is settled
+        else:
+            lam = ctx.constraint_force()
+            ctx.mode = -int(np.sign(lam)) or (1 if tag == "break+" else -1)
+            ctx.record("slip")
+
+    def velocity_scale(self) -> float:
+        return abs(self.surface_velocity)
+
+    # ------------------------------------------------------------ smooth laws
+    def smooth_force(self, s, sd, eps):
+        """Regularised ``-a0 tanh(w / eps) - a1 w - a2 w|w| - a3 w^2|w|`` (harmonic balance)."""
+        w = sd - self.surface_velocity
+        fk = self.kinetic
+        th = np.tanh(w / eps)
+        F = -fk * th - self.viscous * w - self.quadratic * w * np.abs(w) - self.cubic * w * w * w
+        dF = -fk * (1 - th ** 2) / eps - self.viscous - 2 * self.quadratic * np.abs(w) - 3 * self.cubic * w * w
+        return F, np.zeros_like(s), dF
+
+    n_memory = 1
+
+    def regularised_force(self, s, sd, t, memory, settings):
+        """tanh law with a rest memory zeta (see :mod:`discrete.nonsmooth.regularised`)."""
+        w = sd - self.surface_velocity
+        fk, fs = self.levels(t)
+        rest = 1.0 / (1.0 + (w / settings["eps_m"]) ** 8)
+        if self.restick == "kinetic":
+            z = memory[0]
+            dz = rest * (1.0 - z) / settings["tau"] - (1.0 - rest) * z / settings["tau_f"]
+        else:
+            z, dz = rest, 0.0
+        F = -(fk + (fs - fk) * z) * math.tanh(w / settings["eps"]) - self.viscous * w - self.quadratic * w * abs(w) \
+            - self.cubic * w * w * w
+        return F, np.array([dz])
+
+    # ------------------------------------------------------------ Moreau-Jean
+    def moreau(self, h, theta):
+        from ...timestepping.laws import CoulombStep
+
+        if self.mass0 is not None and self.mass_rate:
+            raise ModelError(f"element {self.name!r}", "normal", "weight", "constant levels for the time stepper")
+        return CoulombStep(self, h)

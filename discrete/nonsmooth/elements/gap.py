@@ -1,0 +1,134 @@
+"""Clearance / backlash (textbook (11.1)) and its smooth arctan law (11.2)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ModelError
+from .base import Element
+
+
+@dataclass
+class Gap(Element):
+    """No force for lower <= s <= upper, ``F = -k (s - upper)`` above, ``F = -k (s - lower)`` below
+    (symmetric: lower = -Delta, upper = Delta, Delta = half the gap s).  Modes: +1, 0, -1.
+
+    ``law = "arctan"``: the smooth law (11.2) for a symmetric gap,
+    ``F = -k (s - Delta sign s) (1/2 + arctan(L (|s| - Delta)/Delta)/pi)`` (no modes, no events).
+    """
+
+    k: float = 0.0
+    lower: float = 0.0
+    upper: float = 0.0
+    law: str = "exact"
+    L: float = 1e3
+
+    kind = "gap"
+    smoothness = 1
+
+    def __post_init__(self):
+        where = f"[[gap]] {self.name!r}"
+        if not self.k > 0:
+            raise ModelError(where, "k", self.k, "a number > 0")
+        if not self.lower <= self.upper:
+            raise ModelError(where, "clearance", [self.lower, self.upper], "lower <= upper")
+        if self.law not in ("exact", "arctan"):
+            raise ModelError(where, "law", self.law, "'exact' | 'arctan'")
+        if self.law == "arctan":
+            if not abs(self.lower + self.upper) <= 1e-14 * max(abs(self.upper), 1e-300) or self.upper <= 0:
+                raise ModelError(where, "clearance", [self.lower, self.upper],
+                                 "a symmetric clearance [-Delta, Delta] with Delta > 0 for law = 'arctan' (11.2)")
+            if not self.L > 0:
+                raise ModelError(where, "L", self.L, "a number > 0")
+
+    @property
+    def work(self) -> str:
+        """The exact law is conservative (its potential is tracked); the arctan law's power is element work."""
+        return "conservative" if self.law == "exact" else "elements"
+
+    @property
+    def event_driven(self) -> bool:
+        return self.law == "exact"
+
+    @property
+    def affine(self) -> bool:
+        return self.law == "exact"
+
+    def arctan_force(self, s):
+        d = self.upper
+        u = 0.5 + np.arctan(self.L * (np.abs(s) - d) / d) / np.pi
+        return -self.k * (s - d * np.sign(s)) * u
+
+    # ------------------------------------------------------------ event-driven solver
+    def initial_mode(self, s, sd, scale_v):
+        if self.law == "arctan":
+            return 0
+        if s > self.upper or (s == self.upper and sd > 0):
+            return 1
+        if s < self.lower or (s == self.lower and sd < 0):
+            return -1
+        return 0
+
+    def force(self, mode, s, sd, e0, t):
+        if self.law == "arctan":
+            return self.arctan_force(s)
+        if mode == 1:
+            return -self.k * (s - self.upper * e0)
+        if mode == -1:
+            return -self.k * (s - self.lower * e0)
+        return None
+
+    def guards(self, mode, s, sd, F, e0, t):
+        if self.law != "exact":
+            return []
+        if mode == 1:
+            return [(s - self.upper * e0, "leave")]
+        if mode == -1:
+            return [(self.lower * e0 - s, "leave")]
+        return [(self.upper * e0 - s, "close+"), (s - self.lower * e0, "close-")]
+
+    def on_event(self, tag, ctx):
+        ctx.mode = {"leave": 0, "close+": 1, "close-": -1}[tag]
+        ctx.record("contact_open" if tag == "leave" else "contact_close")
+
+    def potential(self, s, mode):
+        if self.law == "arctan":
+            return 0.0 * s  # not conservative-tracked: its power is counted as element work
+        return 0.5 * self.k * ((s - self.upper) ** 2 * (mode == 1) + (s - self.lower) ** 2 * (mode == -1))
+
+    def stiffness(self) -> float:
+        return self.k
+
+    # ------------------------------------------------------------ smooth laws
+    def smooth_force(self, s, sd, eps):
+        z = np.zeros_like(s)
+        if self.law == "arctan":
+            h = 1e-7 * max(self.upper, 1e-300)
+            return self.arctan_force(s), (self.arctan_force(s + h) - self.arctan_force(s - h)) / (2 * h), z
+        up = (s > self.upper).astype(float)
+        lo = (s < self.lower).astype(float)
+        F = -self.k * ((s - self.upper) * up + (s - self.lower) * lo)
+        return F, -self.k * (up + lo), z
+
+    def regularised_force(self, s, sd, t, memory, settings):
+        F = 0.0
+        if self.law == "arctan":
+            F = float(self.arctan_force(s))
+        elif s > self.upper:
+            F = -self.k * (s - self.upper)
+        elif s < self.lower:
+            F = -self.k * (s - self.lower)
+        return F, ()
+
+    # ------------------------------------------------------------ Moreau-Jean
+    def clearance(self) -> tuple[float, float]:
+        return self.lower, self.upper
+
+    def moreau(self, h, theta):
+        from ...timestepping.laws import ClearanceSpringStep
+
+        if self.law != "exact":
+            raise ModelError(f"element {self.name!r}", "law", self.law,
+                             "'exact' for the Moreau-Jean scheme (use method = 'event' for the smooth law (11.2))")
+        return ClearanceSpringStep(self, h, theta)

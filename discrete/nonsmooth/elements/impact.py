@@ -1,0 +1,100 @@
+"""Rigid unilateral stop with Newton's restitution and accumulation of impacts."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ...errors import ModelError, SolverError
+from .base import Element
+
+
+def restitution_damping_ratio(e: float) -> float:
+    """Damping ratio of a linear spring-dashpot contact with restitution coefficient e:
+    e = exp(-pi z / sqrt(1 - z^2))."""
+    if e >= 1:
+        return 0.0
+    if e <= 0:
+        return 1.0
+    le = -math.log(e)
+    return le / math.sqrt(math.pi ** 2 + le ** 2)
+
+
+@dataclass
+class Impact(Element):
+    """Stop ``s >= s_min`` with Newton's restitution ``s'+ = -e s'-``.
+
+    Modes: 0 free flight, 1 persistent contact (s = s_min held by a constraint force lam >= 0,
+    released when lam would become negative).  A bouncing sequence is closed into persistent
+    contact when the rebound velocity falls below ``v_rest`` (accumulation of impacts; default
+    rest_tol times the largest impact speed of the element)."""
+
+    s_min: float = 0.0
+    restitution: float = 1.0
+    v_rest: float | None = None
+
+    kind = "impact"
+    work = "contacts"
+    smoothness = 0
+    unilateral = True
+    smooth_law = False
+
+    def __post_init__(self):
+        if not 0.0 <= self.restitution <= 1.0:
+            raise ModelError(f"[[impact]] {self.name!r}", "restitution", self.restitution, "a number in [0, 1]")
+
+    # ------------------------------------------------------------ event-driven solver
+    def initial_mode(self, s, sd, scale_v):
+        return 1 if s <= self.s_min and sd <= 0 else 0
+
+    def is_constraint(self, mode):
+        return mode == 1
+
+    def guards(self, mode, s, sd, F, e0, t):
+        if mode == 0:
+            return [(s - self.s_min * e0, "hit")]
+        return [(F.copy(), "release")]
+
+    def constraint_excess(self, lam, t, limit, force_tol):
+        return -lam / max(abs(lam), 1e-300) if lam < -force_tol else -1.0
+
+    def on_event(self, tag, ctx):
+        if tag != "hit":
+            ctx.mode = 0
+            ctx.record("contact_open")
+            return
+        sd = ctx.velocity()
+        if sd >= 0:
+            return
+        E0 = ctx.energy()
+        ref = ctx.impact_speed(abs(sd))
+        vplus = -self.restitution * sd
+        vrest = self.v_rest if self.v_rest is not None else ctx.rest_tol * ref
+        ctx.project_position(self.s_min)
+        ctx.record("impact")
+        if vplus <= vrest:
+            ctx.project_velocity(0.0)
+            ctx.mode = 1
+            ctx.record("contact_close")
+        else:
+            ctx.project_velocity(vplus)
+        ctx.jump += ctx.energy() - E0
+
+    # ------------------------------------------------------------ smooth laws
+    def regularised_force(self, s, sd, t, memory, settings):
+        """Penalty spring-dashpot whose linear-contact restitution is e."""
+        penalty = settings["penalty"]
+        if penalty is None:
+            raise SolverError(f"impact {self.name!r} needs [simulation] penalty = stiffness for the "
+                              "regularised method")
+        F = 0.0
+        if s < self.s_min:
+            m_eff = settings["effective_mass"]()
+            c = 2 * restitution_damping_ratio(self.restitution) * math.sqrt(penalty * m_eff)
+            F = -penalty * (s - self.s_min) - c * sd
+        return F, ()
+
+    # ------------------------------------------------------------ Moreau-Jean
+    def moreau(self, h, theta):
+        from ...timestepping.laws import UnilateralStep
+
+        return UnilateralStep(self, h)

@@ -1,0 +1,90 @@
+"""The linear analyses' tables -> solver inputs: frequencies of ``[analysis]``, the
+:class:`~discrete.linear.Damping` of ``[damping]``, and the located ``[[load]]``,
+``[[base_motion]]`` and ``[[response]]`` DOFs of a forced analysis."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from discrete.errors import ModelError
+from discrete.linear import Damping
+from discrete.linear_system import LinearSystem
+
+
+def frequencies(an) -> np.ndarray:
+    """Angular frequencies (rad/s) of a forced ``[analysis]``."""
+    if an.sweep_hz is not None:
+        sw = an.sweep_hz
+        f = np.geomspace(sw.start, sw.stop, sw.points) if sw.spacing == "log" else np.linspace(sw.start, sw.stop,
+                                                                                              sw.points)
+        return 2 * np.pi * f
+    if an.frequencies_hz is not None:
+        return 2 * np.pi * np.array(an.frequencies_hz, dtype=float)
+    return np.array(an.omega_rad_s, dtype=float)
+
+
+def damping(table) -> Damping:
+    """The harmonic analysis' damping model of a ``[damping]`` table (None: the model's own)."""
+    if table is None:
+        return Damping()
+    return Damping(type=table.kind, alpha=table.alpha, beta=table.beta, zeta=table.zeta, psi=table.psi)
+
+
+@dataclass
+class ForcedSpec:
+    omegas: np.ndarray
+    method: str
+    n_modes: int | None
+    force: np.ndarray
+    base_motion: dict
+    outputs: list[int]
+
+
+def _locate(system: LinearSystem, t, where: str, lumped_key: str) -> int:
+    """DOF of a load/response/base-motion table: FE by x and dof, lumped by body/driver name."""
+    if system.physics == "lumped":
+        name = getattr(t, lumped_key)
+        if getattr(t, "x", None) is not None:
+            raise ModelError(where, "x", t.x, f"{lumped_key} = .. (a lumped model has no FE nodes)")
+        if name is None:
+            raise ModelError(where, lumped_key, None, f"the name of a {lumped_key} (required key missing)")
+        return system.dof_index(name=name, where=where)
+    if getattr(t, lumped_key) is not None:
+        raise ModelError(where, lumped_key, getattr(t, lumped_key), "x = .. (and dof) in an FE model")
+    if t.x is None:
+        raise ModelError(where, "x", None, "the node position x = .. (required key missing)")
+    return system.dof_index(field=t.dof or system.dof_field[0], x=t.x, where=where)
+
+
+def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
+    """Frequencies, excitation and outputs of a linear forced analysis."""
+    an = doc.analysis
+    force = np.zeros(system.n_dofs, dtype=complex)
+    held = set(system.constrained.tolist())
+    for i, t in enumerate(doc.load, 1):
+        w = f"[[load]] #{i}"
+        dof = _locate(system, t, w, "body")
+        if dof in held:
+            raise ModelError(w, "x", t.x if t.x is not None else t.body, "a free DOF (this one is held by a support/driver)")
+        force[dof] += t.amplitude * np.exp(1j * math.radians(t.phase_deg))
+    base = {}
+    for i, t in enumerate(doc.base_motion, 1):
+        w = f"[[base_motion]] #{i}"
+        dof = _locate(system, t, w, "driver")
+        if dof not in held:
+            raise ModelError(w, "x" if system.physics != "lumped" else "driver", t.x if t.x is not None else t.driver,
+                             "a held DOF: a clamped/pinned support (FE) or a driver (lumped)")
+        base[dof] = t.amplitude * np.exp(1j * math.radians(t.phase_deg))
+    outputs = [_locate(system, t, f"[[response]] #{i}", "body") for i, t in enumerate(doc.response, 1)]
+    if not outputs:
+        outputs = sorted(set(np.flatnonzero(force).tolist()))
+    if not outputs:  # base motion only: every body, or the free end of the primary field
+        if system.physics == "lumped":
+            outputs = system.free.tolist()
+        else:
+            prim = system.free[system.dof_field[system.free] == system.dof_field[0]]
+            outputs = [int(prim[np.argmax(np.abs(system.dof_x[prim] - system.dof_x[system.constrained].mean()))])]
+    return ForcedSpec(omegas=frequencies(an), method=an.method, n_modes=an.modes, force=force, base_motion=base,
+                      outputs=outputs)

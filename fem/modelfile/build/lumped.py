@@ -1,0 +1,151 @@
+"""Lumped model files -> :class:`discrete.lumped.LumpedModel` (linear part) and the nonsmooth
+:class:`discrete.nonsmooth.Problem` (elements, drivers, forces, variable mass) of the time and
+steady-state analyses."""
+from __future__ import annotations
+
+import numpy as np
+
+from discrete.errors import ModelError
+from discrete.lumped import GROUND, Body, Driver, Gear, Link, LumpedModel
+from discrete.nonsmooth import ExternalForce, MotionLaw
+from discrete.nonsmooth.problem import ProblemSpec
+
+from .damping import time_domain_damping
+from .elements import element_tables
+
+
+def _names(pair, where: str) -> tuple[str, str]:
+    for end in pair:
+        if not isinstance(end, str):
+            raise ModelError(where, "between", end.model_dump(), "a body or driver name, or \"ground\" "
+                             "(FE nodes { x = .. } only in hybrid models)")
+    return pair[0], pair[1]
+
+
+def lumped_model(doc) -> LumpedModel:
+    """The linear part of a lumped model file: bodies, drivers, springs, dampers, gears."""
+    drivers = []
+    for i, t in enumerate(doc.driver, 1):
+        w = f"[[driver]] #{i}"
+        if t.x is not None or t.dof is not None:
+            raise ModelError(w, "x" if t.x is not None else "dof", t.x if t.x is not None else t.dof,
+                             "name = .. (a lumped driver; FE nodes only in hybrid models)")
+        if t.name is None:
+            raise ModelError(w, "name", None, "the driver's name (required key missing)")
+        drivers.append(Driver(name=t.name, velocity=t.velocity if t.given("velocity") else None,
+                              amplitude=t.amplitude, omega=t.omega, phase=t.phase, inertia=t.inertia,
+                              offset=t.offset))
+    springs, dampers = [], []
+    for i, t in enumerate(doc.spring, 1):
+        pair = _names(t.between, f"[[spring]] #{i}")
+        springs.append(Link(between=pair, value=t.k, ratios=tuple(t.ratios), psi=t.psi))
+        if t.c:
+            dampers.append((i, Link(between=pair, value=t.c, ratios=tuple(t.ratios))))
+    damper_links = [Link(between=_names(t.between, f"[[damper]] #{i}"), value=t.c, ratios=tuple(t.ratios))
+                    for i, t in enumerate(doc.damper, 1)] + [ln for _, ln in dampers]
+    return LumpedModel(bodies=[Body(name=b.name, inertia=b.inertia, inertia_rate=b.inertia_rate, reactive=b.reactive,
+                                    x0=b.x0, v0=b.v0) for b in doc.body],
+                       drivers=drivers, springs=springs, dampers=damper_links,
+                       gears=[Gear(between=tuple(g.between), ratio=g.ratio) for g in doc.gear], title=doc.title)
+
+
+def forcing_omegas(doc) -> list[float]:
+    """The frequencies of the harmonic drivers and forces: the reference of psi's equivalent viscous
+    damping (9.3) in a simulation; none in a file with a [steady] table, whose forcing frequency is
+    continued (psi then goes by the modal form unless omega_ref is a number)."""
+    if getattr(doc, "steady", None) is not None:
+        return []
+    return [d.omega for d in doc.driver if d.amplitude] + [f.omega for f in doc.force if f.amplitude]
+
+
+def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
+    """The nonsmooth problem of a lumped model file (elements, drivers, forces, variable mass)."""
+    lm = lumped_model(doc)
+    if not lm.bodies:
+        raise ModelError("model file", "body", None, "at least one [[body]] table")
+    grav = doc.constants.g
+    names_all = lm.names
+    indep, T = lm.transformation()
+    omegas = forcing_omegas(doc)
+    ls, psi_report = time_domain_damping(lm.linear_system(), doc.damping, omegas)
+    bodies = {b.name: b for b in lm.bodies}
+    rates = np.array([bodies[n].inertia_rate if n in bodies else 0.0 for n in names_all])
+    react = np.array([bodies[n].reactive * bodies[n].inertia_rate if n in bodies else 0.0 for n in names_all])
+    if t_end is not None:
+        for n, b in bodies.items():
+            if b.inertia_rate < 0:
+                t0 = -b.inertia / b.inertia_rate
+                if t0 <= t_end:
+                    raise ModelError(f"[[body]] {n!r}", "inertia_rate", b.inertia_rate,
+                                     f"a rate keeping the inertia positive up to t_end = {t_end!r} "
+                                     f"(the inertia would vanish at t = {t0:.6g})")
+    Mdot = T.T @ np.diag(rates) @ T
+    Creact = T.T @ np.diag(react) @ T
+
+    def coordinate(t, where: str) -> np.ndarray:
+        """Gradient g (independent coordinates) of s = ratio x_body or s = r_b x_b - r_a x_a."""
+        allowed = names_all + [GROUND]
+        g_all = np.zeros(len(names_all))
+        if t.x is not None:
+            raise ModelError(where, "x", t.x, "body = .. or between = [..] (FE nodes only in hybrid models)")
+        if t.body is not None:
+            if t.body not in names_all:
+                raise ModelError(where, "body", t.body, "one of " + ", ".join(map(repr, names_all)))
+            g_all[names_all.index(t.body)] = 1.0 if t.ratio is None else t.ratio
+        elif t.between is not None:
+            a, b = _names(t.between, where)
+            if a == b:
+                raise ModelError(where, "between", [a, b], "two different names, e.g. [\"ground\", \"disk\"]")
+            ra, rb = t.ratios if t.ratios is not None else (1.0, 1.0)
+            for n in (a, b):
+                if n not in allowed:
+                    raise ModelError(where, "between", n, "one of " + ", ".join(map(repr, allowed)))
+            if a != GROUND:
+                g_all[names_all.index(a)] -= ra
+            if b != GROUND:
+                g_all[names_all.index(b)] += rb
+        return g_all @ T
+
+    def weight(t, where):
+        b = bodies.get(t.body)
+        if b is None:
+            raise ModelError(where, "body", t.body, "a body (not a driver) for normal = \"weight\"")
+        return grav * b.inertia, b.inertia, b.inertia_rate or 0.0
+
+    elements = []
+    for table, i, t, name in element_tables(doc):
+        where = f"[[{table}]] #{i}"
+        g = coordinate(t, where)
+        cls, kw, flip = t.element(where, "lumped", weight)
+        elements.append(cls(name=name, g=np.negative(g) if flip else g, **kw))
+
+    forces = []
+    for i, t in enumerate(doc.force, 1):
+        w = f"[[force]] #{i}"
+        g = coordinate(t, w)
+        value = t.value
+        if t.gravity:
+            b = bodies.get(t.body)
+            if b is None:
+                raise ModelError(w, "body", t.body, "a body for gravity = true")
+            if b.inertia_rate != 0:
+                raise ModelError(w, "gravity", True, "a body of constant inertia (inertia_rate = 0)")
+            value -= grav * b.inertia
+        forces.append(ExternalForce(g=g, value=value, amplitude=t.amplitude, omega=t.omega, phase=t.phase))
+
+    drivers = {}
+    for d in lm.drivers:
+        if d.name in indep:
+            drivers[indep.index(d.name)] = MotionLaw(offset=d.offset, velocity=d.velocity or 0.0,
+                                                     amplitude=d.amplitude, omega=d.omega, phase=d.phase)
+    for n, b in bodies.items():
+        if n not in indep and (b.x0 != 0 or b.v0 != 0):
+            raise ModelError(f"[[body]] {n!r}", "x0" if b.x0 != 0 else "v0", b.x0 if b.x0 != 0 else b.v0,
+                             "0 for a body driven by a [[gear]] (give the initial state of the driving body)")
+    x0 = np.zeros(len(indep))
+    v0 = np.zeros(len(indep))
+    for j, n in enumerate(indep):
+        if n in bodies:
+            x0[j], v0[j] = bodies[n].x0, bodies[n].v0
+    return ProblemSpec(system=ls, elements=elements, drivers=drivers, forces=forces, mass_rate=Mdot,
+                       reactive=Creact, x0=x0, v0=v0, damping_report=psi_report)
