@@ -154,13 +154,14 @@ class Study:
         """Whether ``forced`` means the nonlinear amplitude-frequency curve of ``[steady]``."""
         return getattr(self.doc, "steady", None) is not None
 
-    def forced(self):
-        """Harmonic response (linear models), the AFC of [steady] (nonlinear), or the drive's response."""
+    def forced(self, progress=None):
+        """Harmonic response (linear models), the AFC of [steady] (nonlinear; ``progress(omega)`` at every
+        point of the continuation), or the drive's response."""
         an = self.analysis
         if self.is_steady():
             from discrete.steady import afc
 
-            return afc(self.steady_model())
+            return afc(self.steady_model(), progress)
         if not isinstance(an, ForcedAnalysis):
             raise ModelError("[analysis]", "type", getattr(an, "type", None), "'forced' for drivefem forced")
         if self.kind == "drive":
@@ -206,9 +207,12 @@ class Study:
                              "a table [simulation] with t_end = .. (required for drivefem simulate)")
         return {"t_end": sim.t_end, "method": sim.method, **sim.options()}
 
-    def simulate(self):
-        """Time simulation by the method of [simulation] (lumped and hybrid files)."""
+    def simulate(self, progress=None):
+        """Time simulation by the method of [simulation] (lumped and hybrid files); ``progress(t)`` is
+        called as the integration advances."""
         settings = self.simulation_settings()
+        if progress is not None:
+            settings["progress"] = progress
         t_end, method = settings["t_end"], settings["method"]
         spp = settings.get("steps_per_period", 12)
         if self.kind == "hybrid":

@@ -9,7 +9,7 @@ from ..errors import ModelError
 from .problem import ProblemSpec
 
 METHODS = ("event", "moreau", "regularised")
-EVENT_KEYS = ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "energy", "output_step")
+EVENT_KEYS = ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "energy", "output_step", "progress")
 REGULARISED_KEYS = ("regularisation", "penalty", "memory_time", "rtol", "max_step")
 MOREAU_KEYS = ("dt", "theta", "tol", "max_iter", "max_events")
 
@@ -37,7 +37,8 @@ def simulate_spec(spec: ProblemSpec, t_end: float, method: str = "event", settin
             raise ModelError("[simulation]", "method", "moreau", "'event' for variable mass (inertia_rate != 0): "
                              "the Moreau-Jean stepper factorises a constant iteration matrix")
         opts = StepOptions(dt=settings["dt"], theta=settings.get("theta", 0.5), tol=settings.get("tol", 1e-10),
-                           max_iter=settings.get("max_iter", 2000), max_events=settings.get("max_events", 100_000))
+                           max_iter=settings.get("max_iter", 2000), max_events=settings.get("max_events", 100_000),
+                           progress=settings.get("progress"))
         n_steps = int(np.ceil(t_end / opts.dt))
         opts.sample_every = max(1, n_steps // settings.get("samples", 2000))
         return simulate_timestepping(spec.system, spec.elements, drivers=spec.drivers, forces=spec.forces,

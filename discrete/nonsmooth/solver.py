@@ -39,6 +39,7 @@ class Options:
     max_zero_length: int = 100     # consecutive events without time progress before giving up
     output_step: float | None = None   # extra output samples inside exact pieces (plots, CSV)
     contact_tol: float = 1e-9      # persistent-contact force counted as negative only below -contact_tol F_ref
+    progress: object = None        # called with the time reached (a progress bar of the caller's)
 
 
 class _Piece:
@@ -458,6 +459,8 @@ class EventDrivenSolver:
             zs.append(zz.copy())
             ms.append(md)
             Ws.append(W)
+            if o.progress is not None:
+                o.progress(tt)
 
         acc = {"W": 0.0, "Wp": {}, "steps": 0, "rejections": 0}
         events: list[Event] = []
@@ -500,6 +503,10 @@ class EventDrivenSolver:
                     break
         except SolverError as exc:
             stopped, reason = True, f"solver stopped at t = {t!r}: {exc}"
+        except KeyboardInterrupt:
+            n = min(len(ts), len(zs), len(ms), len(Ws))
+            del ts[n:], zs[n:], ms[n:], Ws[n:]
+            stopped, reason = True, f"interrupted (Ctrl-C) at t = {ts[-1]!r}: the results up to there are kept"
         return self._result(ts, zs, ms, Ws, events, t_end, n_pieces, acc, stopped, reason)
 
     def _result(self, ts, zs, ms, Ws, events, t_end, n_pieces, acc, stopped, reason):

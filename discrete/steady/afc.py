@@ -210,7 +210,7 @@ def _record_stability(mu, max_multiplier: list, critical: list, stable: list) ->
     critical.append(float(mu[np.argmax(np.abs(mu))].real))
     stable.append(max_multiplier[-1] < 1 + 1e-6)
 
-def _hb_curve(sm: SteadyModel) -> AFCResult:
+def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
     w0, w1 = cfg.range
@@ -229,7 +229,7 @@ def _hb_curve(sm: SteadyModel) -> AFCResult:
         return R, J, (hb.residual_omega(x, w) if need_w else None)
 
     br = arclength(fun, X0, w0, w1, xscale=xs, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
-                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True)
+                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, callback=_report(progress))
     om, resp, stab, mm, states, crit = [], [], [], [], [], []
     for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
         t, q, v = hb.evaluate(x, w, points=max(512, hb.N))
@@ -253,7 +253,7 @@ def _hb_curve(sm: SteadyModel) -> AFCResult:
                      critical=np.array(crit))
 
 
-def _shooting_curve(sm: SteadyModel) -> AFCResult:
+def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
     cfg = sm.cfg
     sh = ShootingModel(sm.factory, nu=cfg.subharmonic, steps_per_period=cfg.steps_per_period)
     w0, w1 = cfg.range
@@ -273,7 +273,8 @@ def _shooting_curve(sm: SteadyModel) -> AFCResult:
         raise SolverError(f"continuation cannot start at omega = {w0!r}: {exc}") from exc
     fun = sh.fun(sc)
     br = arclength(fun, y, w0, w1, xscale=sc, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
-                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, tol=1e-8)
+                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, tol=1e-8,
+                   callback=_report(progress))
     om, resp, stab, mm, states, crit = [], [], [], [], [], []
     for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
         resp.append(_shoot_measure(sm, sh, x, w))
@@ -320,10 +321,16 @@ def _shoot_measure(sm, sh, y, w):
     return sm.measure(res.t, res.x[p.f], res.v[p.f], w)
 
 
-def afc(sm: SteadyModel) -> AFCResult:
-    """The amplitude-frequency curve of a steady-state model (HB or shooting by its settings)."""
+def _report(progress):
+    """The continuation's callback for a progress function of the frequency reached (or None)."""
+    return None if progress is None else (lambda x, w: progress(w))
+
+
+def afc(sm: SteadyModel, progress=None) -> AFCResult:
+    """The amplitude-frequency curve of a steady-state model (HB or shooting by its settings);
+    ``progress(omega)`` is called at every point of the continuation."""
     if sm.cfg.method == "hb":
         if not sm.system.smooth_ok:
             raise ModelError("[steady]", "method", "hb", "'shooting' for models with [[impact]] elements")
-        return _hb_curve(sm)
-    return _shooting_curve(sm)
+        return _hb_curve(sm, progress)
+    return _shooting_curve(sm, progress)

@@ -40,7 +40,7 @@ class Branch:
     reason: str = ""                                   # one sentence: where and why the branch ended
     steps_rejected: int = 0
     completed: bool = False                            # True iff the last point is solved at w_end
-    stop: str = ""                                     # "end" | "left_range" | "ds_min" | "max_steps"
+    stop: str = ""                                     # "end" | "left_range" | "ds_min" | "max_steps" | "interrupted"
     w_end: float = float("nan")                        # the end of the range that was asked for
 
     @property
@@ -163,64 +163,71 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     if callback:
         callback(x, w)
     h = ds
-    for step in range(max_steps):
-        u = np.concatenate([x / xs, [w / wscale]])
-        ok = False
-        failure = f"the step ds = {h:g} is below ds_min before any try"
-        landed = None
-        while h >= ds_min:
-            try:
-                uu, it = corrector(u + h * tau, tau)
-                xn, wn = uu[:n] * xs, uu[n] * wscale
-                landed = crossed(wn)
-                if landed is not None:     # at or beyond a bound: land on it at the fixed frequency
-                    xn, it_land = _land(fun, x, w, xn, wn, landed, xs, tol, maxit, h)
-                    wn = float(landed)
-                    it = max(it, it_land)
-                tn = tangent(xn, wn, tau)
-                if tn @ tau <= 0.8:
-                    raise _StepFailure(f"the tangent turned by {np.degrees(np.arccos(np.clip(tn @ tau, -1, 1))):.1f}"
-                                       f" deg (limit 36.9 deg) between omega = {w:.6g} and {wn:.6g}")
-                ok = True
+    try:
+        for step in range(max_steps):
+            u = np.concatenate([x / xs, [w / wscale]])
+            ok = False
+            failure = f"the step ds = {h:g} is below ds_min before any try"
+            landed = None
+            while h >= ds_min:
+                try:
+                    uu, it = corrector(u + h * tau, tau)
+                    xn, wn = uu[:n] * xs, uu[n] * wscale
+                    landed = crossed(wn)
+                    if landed is not None:     # at or beyond a bound: land on it at the fixed frequency
+                        xn, it_land = _land(fun, x, w, xn, wn, landed, xs, tol, maxit, h)
+                        wn = float(landed)
+                        it = max(it, it_land)
+                    tn = tangent(xn, wn, tau)
+                    if tn @ tau <= 0.8:
+                        raise _StepFailure(f"the tangent turned by {np.degrees(np.arccos(np.clip(tn @ tau, -1, 1))):.1f}"
+                                           f" deg (limit 36.9 deg) between omega = {w:.6g} and {wn:.6g}")
+                    ok = True
+                    break
+                except (SolverError, np.linalg.LinAlgError, _StepFailure) as exc:
+                    failure = str(exc) or type(exc).__name__
+                    landed = None
+                br.steps_rejected += 1
+                h *= 0.5
+            if not ok:
+                br.stop = "ds_min"
+                br.reason = (f"stalled at omega = {w:.10g} (range end {w_end:.10g} not reached): the step fell below "
+                             f"ds_min = {ds_min:g}; last failure: {failure}")
                 break
-            except (SolverError, np.linalg.LinAlgError, _StepFailure) as exc:
-                failure = str(exc) or type(exc).__name__
-                landed = None
-            br.steps_rejected += 1
-            h *= 0.5
-        if not ok:
-            br.stop = "ds_min"
-            br.reason = (f"stalled at omega = {w:.10g} (range end {w_end:.10g} not reached): the step fell below "
-                         f"ds_min = {ds_min:g}; last failure: {failure}")
-            break
-        if np.sign(tn[n]) != np.sign(tau[n]) and tau[n] != 0:
-            fr = tau[n] / (tau[n] - tn[n])
-            br.folds.append((len(br.w) - 1, w + fr * (wn - w), fr))
-        x, w, tau = xn, wn, tn
-        br.x.append(x.copy())
-        br.w.append(w)
-        br.tangent_w.append(tau[n])
-        br.iterations.append(it)
-        if callback:
-            callback(x, w)
-        if it <= 3:
-            h = min(1.5 * h, ds_max)
-        elif it >= 7:
-            h = max(0.6 * h, ds_min)
-        if landed == w_end:
-            br.stop, br.completed = "end", True
-            br.reason = f"reached the end of the frequency range: omega = {w_end:.10g} (solved there)"
-            break
-        if landed is not None:
-            fold = f" at the fold near omega = {br.folds[-1][1]:.6g}" if br.folds else ""
-            br.stop = "left_range"
-            br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): the branch turned "
-                         f"back{fold} and left the range through its start omega = {w_start:.10g}")
-            break
-    else:
-        br.stop = "max_steps"
-        br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): max_steps = {max_steps} "
-                     f"reached")
+            if np.sign(tn[n]) != np.sign(tau[n]) and tau[n] != 0:
+                fr = tau[n] / (tau[n] - tn[n])
+                br.folds.append((len(br.w) - 1, w + fr * (wn - w), fr))
+            x, w, tau = xn, wn, tn
+            br.x.append(x.copy())
+            br.w.append(w)
+            br.tangent_w.append(tau[n])
+            br.iterations.append(it)
+            if callback:
+                callback(x, w)
+            if it <= 3:
+                h = min(1.5 * h, ds_max)
+            elif it >= 7:
+                h = max(0.6 * h, ds_min)
+            if landed == w_end:
+                br.stop, br.completed = "end", True
+                br.reason = f"reached the end of the frequency range: omega = {w_end:.10g} (solved there)"
+                break
+            if landed is not None:
+                fold = f" at the fold near omega = {br.folds[-1][1]:.6g}" if br.folds else ""
+                br.stop = "left_range"
+                br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): the branch turned "
+                             f"back{fold} and left the range through its start omega = {w_start:.10g}")
+                break
+        else:
+            br.stop = "max_steps"
+            br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): max_steps = {max_steps} "
+                         f"reached")
+    except KeyboardInterrupt:
+        m = min(len(br.x), len(br.w), len(br.tangent_w), len(br.iterations))
+        del br.x[m:], br.w[m:], br.tangent_w[m:], br.iterations[m:]
+        br.stop = "interrupted"
+        br.reason = (f"interrupted (Ctrl-C) at omega = {br.w[-1]:.10g} (range end {w_end:.10g} not reached): the "
+                     "points computed are kept")
     return br
 
 

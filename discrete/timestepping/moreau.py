@@ -53,6 +53,7 @@ class StepOptions:
     sample_every: int = 1       # store every n-th step
     events: bool = True         # record stick/slip/impact events
     max_events: int = 100_000
+    progress: object = None     # called with the time reached every 1000 steps (a progress bar of the caller's)
 
 
 @dataclass
@@ -175,89 +176,97 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
     it_max, unconv = 0, 0
     p = np.zeros(nel)
     warn: list[str] = []
-    for k in range(1, n_steps + 1):
-        t1 = t0 + k * h
-        tth = t + th * h
-        xc0, vc0, ac0 = drv(t)
-        xc1, vc1, ac1 = drv(t1)
-        xcth, vcth, acth = drv(tth)
-        rhs = fext(tth) - Kfc @ xcth - Cfc @ vcth - Mfc @ acth if c.size else fext(tth)
-        rhs = rhs - Cff @ v - Kff @ (q + h * th * v)
-        if explicit:
-            Vc = np.zeros(n); Vc[f] = v; Vc[c] = vc0
-            for i in explicit:
-                g = elements[i].g
-                rhs += g[f] * laws[i].explicit_force(g @ Vc)
-        vfree = v + lu.solve(h * rhs)
-        if nel:
-            ufree = Gf @ vfree + Gc @ vc1
-            X0 = np.zeros(n); X0[f] = q; X0[c] = xc0
-            V0 = np.zeros(n); V0[f] = v; V0[c] = vc0
-            s0, u_prev = G @ X0, G @ V0
-            for law, si, ui in zip(laws, s0, u_prev):
-                law.begin(si, ui)
-            active = np.array([law.active for law in laws], dtype=bool)
-            bound = np.array([law.bound for law in laws])
-            p = np.where(active, p, 0.0)
-            scale = max(float(np.max(bound)) if bound.size else 0.0,
-                        float(np.max(np.abs(D @ np.ones(nel)))) * 1e-300, 1e-300)
-            u = ufree + D @ p
-            converged = False
-            it = 0
-            for _pass in range(2):
-              for it in range(it + 1, o.max_iter + 1):
-                  dmax = 0.0
-                  for i in range(nel):
-                      if not active[i]:
-                          continue
-                      new = laws[i].project(u[i], Dd[i], p[i])
-                      dp = new - p[i]
-                      if dp != 0.0:
-                          u += D[:, i] * dp
-                          p[i] = new
-                          dmax = max(dmax, abs(dp))
-                  ref = max(scale, float(np.max(np.abs(p))) if p.size else 0.0)
-                  if dmax <= o.tol * ref:
-                      converged = True
+    interrupted = None
+    try:
+        for k in range(1, n_steps + 1):
+            t1 = t0 + k * h
+            tth = t + th * h
+            xc0, vc0, ac0 = drv(t)
+            xc1, vc1, ac1 = drv(t1)
+            xcth, vcth, acth = drv(tth)
+            rhs = fext(tth) - Kfc @ xcth - Cfc @ vcth - Mfc @ acth if c.size else fext(tth)
+            rhs = rhs - Cff @ v - Kff @ (q + h * th * v)
+            if explicit:
+                Vc = np.zeros(n); Vc[f] = v; Vc[c] = vc0
+                for i in explicit:
+                    g = elements[i].g
+                    rhs += g[f] * laws[i].explicit_force(g @ Vc)
+            vfree = v + lu.solve(h * rhs)
+            if nel:
+                ufree = Gf @ vfree + Gc @ vc1
+                X0 = np.zeros(n); X0[f] = q; X0[c] = xc0
+                V0 = np.zeros(n); V0[f] = v; V0[c] = vc0
+                s0, u_prev = G @ X0, G @ V0
+                for law, si, ui in zip(laws, s0, u_prev):
+                    law.begin(si, ui)
+                active = np.array([law.active for law in laws], dtype=bool)
+                bound = np.array([law.bound for law in laws])
+                p = np.where(active, p, 0.0)
+                scale = max(float(np.max(bound)) if bound.size else 0.0,
+                            float(np.max(np.abs(D @ np.ones(nel)))) * 1e-300, 1e-300)
+                u = ufree + D @ p
+                converged = False
+                it = 0
+                for _pass in range(2):
+                  for it in range(it + 1, o.max_iter + 1):
+                      dmax = 0.0
+                      for i in range(nel):
+                          if not active[i]:
+                              continue
+                          new = laws[i].project(u[i], Dd[i], p[i])
+                          dp = new - p[i]
+                          if dp != 0.0:
+                              u += D[:, i] * dp
+                              p[i] = new
+                              dmax = max(dmax, abs(dp))
+                      ref = max(scale, float(np.max(np.abs(p))) if p.size else 0.0)
+                      if dmax <= o.tol * ref:
+                          converged = True
+                          break
+                  # a law may need the step again (friction breaking away within it: the kinetic level)
+                  if not any([law.retry(pi) for law, pi in zip(laws, p)]):
                       break
-              # a law may need the step again (friction breaking away within it: the kinetic level)
-              if not any([law.retry(pi) for law, pi in zip(laws, p)]):
-                  break
-              p = np.array([law.retry_clip(pi) for law, pi in zip(laws, p)])
-              u = ufree + D @ p
-              converged = False
-            it_max = max(it_max, it)
-            if not converged:
-                unconv += 1
-            v1 = vfree + W @ p
-        else:
-            v1 = vfree
-        vth = (1 - th) * v + th * v1
-        q1 = q + h * vth
-        # work of the non-conservative forces over the step (midpoint velocities)
-        vm = 0.5 * (v + v1)
-        dW = h * vm @ (fext(tth) - Cff @ vm)
-        if c.size:
-            Xm = np.zeros(n); Xm[f] = 0.5 * (q + q1); Xm[c] = xcth
-            dW += h * (vcth @ (K[c] @ Xm) - vm @ (Cfc @ vcth + Mfc @ acth))
-        if nel:
-            um = 0.5 * (G[:, f] @ (v + v1)) + Gc @ vcth
-            dW += p[~conservative] @ um[~conservative]      # conservative laws: their energy is in E
-            for i in explicit:
-                g = elements[i].g
-                dW += h * laws[i].explicit_force(0.5 * (g[f] @ (v + v1)) + g[c] @ vcth) * (0.5 * (g[f] @ (v + v1)))
-        Wacc += dW
-        q, v, t = q1, v1, t1
-        if nel:
-            happened = sorted((rank, i, kind) for i, (law, pi) in enumerate(zip(laws, p)) for rank, kind in law.finish(pi))
-            if o.events and len(events) < o.max_events:
-                events += [Event(t=t, kind=kind, element=elements[i].name, state={}) for _, i, kind in happened]
-        if k % o.sample_every == 0 or k == n_steps:
-            X, V = full(q, v, t)
-            ts.append(t); xs.append(X); vs.append(V); Es.append(energy(X, V)); Ws.append(Wacc)
-            Ps.append(p / h if nel else np.zeros(0))
-        if not np.all(np.isfinite(v)):
-            raise SolverError(f"Moreau-Jean: non-finite velocities at t = {t!r} (dt = {h!r})")
+                  p = np.array([law.retry_clip(pi) for law, pi in zip(laws, p)])
+                  u = ufree + D @ p
+                  converged = False
+                it_max = max(it_max, it)
+                if not converged:
+                    unconv += 1
+                v1 = vfree + W @ p
+            else:
+                v1 = vfree
+            vth = (1 - th) * v + th * v1
+            q1 = q + h * vth
+            # work of the non-conservative forces over the step (midpoint velocities)
+            vm = 0.5 * (v + v1)
+            dW = h * vm @ (fext(tth) - Cff @ vm)
+            if c.size:
+                Xm = np.zeros(n); Xm[f] = 0.5 * (q + q1); Xm[c] = xcth
+                dW += h * (vcth @ (K[c] @ Xm) - vm @ (Cfc @ vcth + Mfc @ acth))
+            if nel:
+                um = 0.5 * (G[:, f] @ (v + v1)) + Gc @ vcth
+                dW += p[~conservative] @ um[~conservative]      # conservative laws: their energy is in E
+                for i in explicit:
+                    g = elements[i].g
+                    dW += h * laws[i].explicit_force(0.5 * (g[f] @ (v + v1)) + g[c] @ vcth) * (0.5 * (g[f] @ (v + v1)))
+            Wacc += dW
+            q, v, t = q1, v1, t1
+            if nel:
+                happened = sorted((rank, i, kind) for i, (law, pi) in enumerate(zip(laws, p)) for rank, kind in law.finish(pi))
+                if o.events and len(events) < o.max_events:
+                    events += [Event(t=t, kind=kind, element=elements[i].name, state={}) for _, i, kind in happened]
+            if k % o.sample_every == 0 or k == n_steps:
+                X, V = full(q, v, t)
+                ts.append(t); xs.append(X); vs.append(V); Es.append(energy(X, V)); Ws.append(Wacc)
+                Ps.append(p / h if nel else np.zeros(0))
+            if not np.all(np.isfinite(v)):
+                raise SolverError(f"Moreau-Jean: non-finite velocities at t = {t!r} (dt = {h!r})")
+            if o.progress is not None and k % 1000 == 0:
+                o.progress(t)
+    except KeyboardInterrupt:
+        n = min(len(ts), len(xs), len(vs), len(Es), len(Ws), len(Ps))
+        del ts[n:], xs[n:], vs[n:], Es[n:], Ws[n:], Ps[n:]
+        interrupted = f"interrupted (Ctrl-C) at t = {ts[-1]!r}: the results up to there are kept"
     if unconv:
         warn.append(f"projected Gauss-Seidel did not reach tol = {o.tol:g} in {unconv} step(s) "
                     f"(max_iter = {o.max_iter})")
@@ -271,7 +280,8 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
                          t_end=float(t_end), energy=E, work=Wt, energy_error=err, n_steps=n_steps,
                          pgs_iterations_max=it_max, pgs_unconverged=unconv, warnings=warn,
                          element_forces=np.array(Ps).T if nel else None,    # impulse / dt of each step
-                         elements=[f"{el.kind}:{el.name}" for el in elements], driven=[names[j] for j in c])
+                         elements=[f"{el.kind}:{el.name}" for el in elements], driven=[names[j] for j in c],
+                         stopped_early=interrupted is not None, reason=interrupted or "")
     # periodic regime: upward velocity crossings of every moving DOF agree over the last 3 cycles
     from ..nonsmooth.periodic import detect_period_smooth
 

@@ -13,7 +13,6 @@ from discrete.errors import ModelError, SolverError
 from . import commands
 
 EXIT_INTERNAL = 70      # a bug of drivefem (not in the documented set, so tests and fuzzers see it)
-EXIT_INTERRUPTED = 130
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -97,7 +96,7 @@ def main(argv: list[str] | None = None) -> int:
         return 4
     except KeyboardInterrupt:
         print("drivefem: interrupted (files already written are kept)", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return commands.EXIT_INTERRUPTED
     except BrokenPipeError:  # output piped into head & co.
         sys.stderr.close()
         return 0

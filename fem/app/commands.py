@@ -15,6 +15,9 @@ from discrete.errors import ModelError
 from ..output import check_output_path, columns, contract, tables, write_json
 from ..output.jsonio import encode
 from ..study import Study
+from .progress import progress_bar
+
+EXIT_INTERRUPTED = 130
 
 
 def _outputs(args, **options) -> None:
@@ -87,7 +90,12 @@ def _dunkerley(study) -> float | None:
 def forced(args) -> int:
     _outputs(args, json=False, csv=False, plot=False)
     study = Study.load(args.model)
-    res = study.forced()
+    if study.is_steady():
+        w0, w1 = study.doc.steady.range
+        with progress_bar(w0, w1, "continuation", "rad/s") as update:
+            res = study.forced(progress=update)
+    else:
+        res = study.forced()
     data = contract.forced_data(study, res)
     _emit(args, "forced", study, data)
     tables.forced_table(study, res, all_rows=args.all)
@@ -105,6 +113,9 @@ def forced(args) -> int:
             print(f"wrote {args.plot}")
         else:
             print(f"wrote {plot_frf(res, args.plot, study.title)}")
+    if steady and res.stop_cause == "interrupted":
+        print(f"continuation {res.reason}", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if steady and not res.completed:
         print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
         return 1
@@ -130,7 +141,8 @@ def simulate(args) -> int:
     if study.kind not in ("lumped", "hybrid"):
         raise ModelError(str(args.model), "simulation", None, "a lumped or hybrid model file with a [simulation] table "
                          f"(this is a {study.kind} model)")
-    res = study.simulate()
+    with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
+        res = study.simulate(progress=update)
     d = _emit(args, "simulate", study, contract.simulate_data(study, res))
     tables.simulation_summary(study.title, d)
     if args.csv:
@@ -142,6 +154,8 @@ def simulate(args) -> int:
         plot = plot_hybrid if study.kind == "hybrid" else plot_time_history
         for p in plot(res, args.png):
             print(f"wrote {p}")
+    if str(d.get("reason", "")).startswith("interrupted"):
+        return EXIT_INTERRUPTED
     return 1 if d.get("stopped_early") else 0
 
 

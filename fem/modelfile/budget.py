@@ -35,14 +35,16 @@ def scale() -> float:
     return f
 
 
-def check_count(where: str, key, estimate: float, limit: float, what: str) -> None:
-    """Refuse ``estimate`` (a number of ``what``) above ``limit`` times the budget factor."""
+def check_count(where: str, key, estimate: float, limit: float, what: str, value=None) -> None:
+    """Refuse ``estimate`` (a number of ``what`` implied by ``key = value``) above ``limit`` times the
+    budget factor."""
     lim = limit * scale()
     if not (estimate <= lim):          # also NaN and infinity
         shown = f"{estimate:.3g}" if math.isfinite(estimate) else "unbounded"
         factor = estimate / limit if math.isfinite(estimate) else float("inf")
-        raise ModelError(where, key, f"{shown} {what} (estimated)", f"at most {lim:.3g} {what}; a deliberate larger "
-                         f"run needs DRIVEFEM_BUDGET >= {factor:.3g}")
+        raise ModelError(where, key, estimate if value is None else value,
+                         f"a value implying at most {lim:.3g} {what} (this one: {shown}); a deliberate larger run "
+                         f"needs DRIVEFEM_BUDGET >= {factor:.3g}")
 
 
 def check_document(doc, kind: str) -> None:
@@ -51,11 +53,11 @@ def check_document(doc, kind: str) -> None:
         fields = 2 if doc.model.physics == "bending" else 1
         order = 1 if (doc.model.physics == "bending" and doc.model.theory == "euler-bernoulli") else doc.model.order
         dofs = sum(s.elements for s in doc.segment) * order * fields
-        check_count("[[segment]]", "elements", dofs, MAX_FE_DOFS, "FE unknowns")
+        check_count("[[segment]]", "elements", dofs, MAX_FE_DOFS, "FE unknowns", [s.elements for s in doc.segment])
     if kind == "drive":
         n = doc.drive.n
         conv = getattr(doc.analysis, "convergence_n", None) or []
-        check_count("[drive]", "n", max([n] + list(conv)), MAX_DRIVE_N, "mechanisms")
+        check_count("[drive]", "n", max([n] + list(conv)), MAX_DRIVE_N, "mechanisms", n)
     an = doc.analysis
     if an is not None and an.modes is not None:
         check_count("[analysis]", "modes", an.modes, MAX_MODES, "modes")
@@ -71,12 +73,13 @@ def check_document(doc, kind: str) -> None:
     if sim is not None:
         t = sim.t_end
         if sim.max_step is not None:
-            check_count("[simulation]", "max_step", t / sim.max_step, MAX_TIME_STEPS, "steps (t_end / max_step)")
+            check_count("[simulation]", "max_step", t / sim.max_step, MAX_TIME_STEPS, "steps (t_end / max_step)",
+                        sim.max_step)
         if sim.output_step is not None:
             check_count("[simulation]", "output_step", t / sim.output_step, MAX_OUTPUT_SAMPLES,
-                        "output samples (t_end / output_step)")
+                        "output samples (t_end / output_step)", sim.output_step)
         if sim.dt is not None:
-            check_count("[simulation]", "dt", t / sim.dt, MAX_TIME_STEPS, "steps (t_end / dt)")
+            check_count("[simulation]", "dt", t / sim.dt, MAX_TIME_STEPS, "steps (t_end / dt)", sim.dt)
         if sim.samples is not None:
             check_count("[simulation]", "samples", sim.samples, MAX_OUTPUT_SAMPLES, "output samples")
 
@@ -89,7 +92,7 @@ def check_time_integration(t_end: float, omega_max: float, steps_per_period: int
     steps = t_end * omega_max * steps_per_period / (2 * math.pi)
     check_count("[simulation]", "t_end", steps, MAX_TIME_STEPS,
                 f"steps ({steps_per_period} per period of the highest frequency {omega_max:.3g} rad/s of the "
-                "model: stiff elements or small inertias shorten it)")
+                "model: stiff elements or small inertias shorten it)", t_end)
 
 
 def check_hb(n_dofs: int, harmonics: int) -> None:
