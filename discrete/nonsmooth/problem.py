@@ -227,10 +227,18 @@ class Problem:
     def energy(self, t, q, v, e, mode):
         """Mechanical energy: kinetic of free DOFs + elastic of all springs + element potentials."""
         x, _ = self.full_state(q, v, e)
+        return self.linear_energy(t, x, v) + self.potential_energy(q, e, mode)
+
+    def linear_energy(self, t, x, v):
+        """Kinetic energy of the free DOFs and elastic energy of the springs, for full-DOF
+        positions x and free velocities v (columns: states)."""
         if self._Krigid.shape[1]:
             x = x - self._Krigid @ (self._Krigid.T @ x)
-        Mt = self.mass(t)
-        E = 0.5 * np.einsum("im,ij,jm->m", v, Mt, v) + 0.5 * np.einsum("im,ij,jm->m", x, self.Kfull, x)
+        return 0.5 * np.sum(v * (self.mass(t) @ v), axis=0) + 0.5 * np.sum(x * (self.Kfull @ x), axis=0)
+
+    def potential_energy(self, q, e, mode):
+        """Potential energy of the conservative elements in ``mode``."""
+        E = 0.0
         for i, el in enumerate(self.elements):
             if el.has_potential:
                 s = self.gf[i] @ q + self.ge[i] @ e

@@ -21,8 +21,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..errors import SolverError
-from ..linalg.expm import expm_small as _expm
 from .periodic import detect_period, detect_period_smooth
+from .piece import AffinePiece
 from .problem import Problem
 from .result import Event, SimulationResult
 
@@ -42,50 +42,6 @@ class Options:
     progress: object = None        # called with the time reached (a progress bar of the caller's)
 
 
-class _Piece:
-    """Linear maps and step propagators of one affine mode."""
-
-    def __init__(self, prob: Problem, mode, opts: Options, t_end_span: float):
-        self.A, self.Cg, self.tags, self.Fm, self.Sm, self.Sdm = prob.linear_maps(mode)
-        self.CgA = self.Cg @ self.A
-        self.CgAA = self.CgA @ self.A
-        ev = np.linalg.eigvals(self.A)
-        rho = float(np.max(np.abs(ev))) if ev.size else 0.0
-        h = np.inf if rho == 0 else 2 * np.pi / (opts.steps_per_period * rho)
-        if opts.max_step:
-            h = min(h, opts.max_step)
-        self.h = min(h, t_end_span)
-        self._phi = {}
-        self.Q = _power_form(prob, mode, self.Fm, self.Sdm)
-
-    def phi(self, tau: float) -> np.ndarray:
-        P = self._phi.get(tau)
-        if P is None:
-            P = _expm(self.A * tau)
-            if len(self._phi) < 64:
-                self._phi[tau] = P
-        return P
-
-    def work_matrix(self, hh):
-        """{part: G(hh)} with G = int_0^hh Phi(s)^T Q Phi(s) ds (Van Loan 1978), so the work of each
-        source of non-conservative forces over a step is z0^T G z0 exactly (power = z^T Q z)."""
-        key = ("w", hh)
-        G = self._phi.get(key)
-        if G is None:
-            n = self.A.shape[0]
-            G = {}
-            for part, Q in self.Q.items():
-                Cm = np.zeros((2 * n, 2 * n))
-                Cm[:n, :n] = -self.A.T
-                Cm[:n, n:] = Q
-                Cm[n:, n:] = self.A
-                F = _expm(Cm * hh)
-                G[part] = F[n:, n:].T @ F[:n, n:]
-            if len(self._phi) < 64:
-                self._phi[key] = G
-        return G
-
-
 class EventDrivenSolver:
     def __init__(self, problem: Problem, options: Options | None = None):
         self.p = problem
@@ -93,6 +49,10 @@ class EventDrivenSolver:
         self._pieces: dict = {}
         self.warnings: list[str] = []
         self._contact_ftol = self._contact_force_tolerances()
+        self._projections: dict = {}        # (element, velocity?) -> (row, direction) of _project
+        self._t_end = np.inf
+        self._event_states: list = []       # (event, state vector): the events' DOF states, filled in at the end
+        self._buffers = None                # output buffers of the exact pieces (reused)
 
     def _contact_force_tolerances(self) -> dict:
         """Round-off tolerance of each persistent contact's force.  When an elastic body lands
@@ -123,23 +83,52 @@ class EventDrivenSolver:
         q, v, e = self._split(z)
         return self.p.evaluate(t, q[:, None], v[:, None], e[:, None], mode)
 
-    def _state_dict(self, z):
-        q, v, e = self._split(z)
-        x, xd = self.p.full_state(q[:, None], v[:, None], e[:, None])
-        return {n: {"x": float(x[i, 0]), "v": float(xd[i, 0])} for i, n in enumerate(self.p.names)}
+    def _forces(self, t, z, mode):
+        """(element forces along s, constraint rows) at one state: the cached linear map of an
+        affine mode, the full evaluation otherwise."""
+        mode = tuple(mode)
+        pc = self._pieces.get(mode)
+        if pc is None and self.p.mode_affine(mode) and np.isfinite(self._t_end):
+            pc = self._piece(mode, self._t_end - t)
+        if pc is not None:
+            return (pc.Fm @ z).tolist(), pc.rows
+        out = self._eval(t, z, mode)
+        return out["F"][:, 0].tolist(), out["rows"]
+
+    def _fill_event_states(self) -> None:
+        """The DOF states of the events ({name: {x, v}}), from their state vectors in one pass."""
+        if not self._event_states:
+            return
+        Z = np.array([z for _, z in self._event_states]).T
+        x, xd = self.p.full_state(*self._split(Z))
+        x, xd = x.T.tolist(), xd.T.tolist()
+        names = self.p.names
+        for k, (ev, _) in enumerate(self._event_states):
+            ev.state.update({n: {"x": xk, "v": vk} for n, xk, vk in zip(names, x[k], xd[k])})
+        self._event_states = []
 
     def _project(self, t, z, i, target, velocity: bool):
         """Set s'_i (``velocity``) or s_i to ``target`` with the smallest mass-weighted change of the
-        velocities or positions (the kinetic-energy-minimal projection along M^-1 g_i)."""
-        p = self.p
-        q, v, e = self._split(z)
-        g = p.gf[i]
-        current = g @ v + p.gve[i] @ e if velocity else g @ q + p.ge[i] @ e
-        Mig = np.linalg.solve(p.mass(t), g)
-        z = z.copy()
-        part = slice(p.nf, 2 * p.nf) if velocity else slice(0, p.nf)
-        z[part] += Mig * (target - current) / (g @ Mig)
-        return z
+        velocities or positions (the kinetic-energy-minimal projection along M^-1 g_i):
+        z + d (target - r . z) with r the row of s'_i (s_i) and d = M^-1 g_i / (g_i M^-1 g_i) in the
+        velocity (position) part."""
+        key = (i, velocity)
+        rd = self._projections.get(key) if self.p.time_invariant else None
+        if rd is None:
+            p = self.p
+            nf = p.nf
+            Mig = np.linalg.solve(p.mass(t), p.gf[i])
+            r = np.zeros(z.size)
+            d = np.zeros(z.size)
+            part = slice(nf, 2 * nf) if velocity else slice(0, nf)
+            r[part] = p.gf[i]
+            r[2 * nf:] = p.gve[i] if velocity else p.ge[i]
+            d[part] = Mig / float(p.gf[i] @ Mig)
+            rd = (r, d)
+            if p.time_invariant:
+                self._projections[key] = rd
+        r, d = rd
+        return z + d * (target - r @ z)
 
     def _project_velocity(self, t, z, i, target):
         return self._project(t, z, i, target, velocity=True)
@@ -153,16 +142,15 @@ class EventDrivenSolver:
         mode = list(mode)
         limits = dict(limits or {})
         for _ in range(4 * len(mode) + 4):
-            out = self._eval(t, z, mode)
+            F, rows = self._forces(t, z, mode)
             worst, wi = 0.0, None
-            for i in out["rows"]:
-                lam = out["F"][i, 0]
-                excess = self.p.elements[i].constraint_excess(lam, t, limits.get(i), self._contact_ftol.get(i, 0.0))
+            for i in rows:
+                excess = self.p.elements[i].constraint_excess(F[i], t, limits.get(i), self._contact_ftol.get(i, 0.0))
                 if excess > 1e-12 and excess > worst:
                     worst, wi = excess, i
             if wi is None:
-                return mode, out
-            mode[wi] = self.p.elements[wi].released_mode(out["F"][wi, 0])
+                return mode
+            mode[wi] = self.p.elements[wi].released_mode(F[wi])
             limits.pop(wi, None)
         raise SolverError(f"could not find a consistent contact/stick mode at t = {t!r}")
 
@@ -174,156 +162,44 @@ class EventDrivenSolver:
         for i, el in enumerate(p.elements):
             s, sd = p.gf[i] @ q + p.ge[i] @ e, p.gf[i] @ v + p.gve[i] @ e
             mode.append(el.initial_mode(s, sd, scale_v))
-        mode, _ = self._consistent_mode(t, z, mode)
-        return tuple(mode)
+        return tuple(self._consistent_mode(t, z, mode))
 
     # --------------------------------------------------------- exact pieces
-    def _piece(self, mode, span):
-        key = mode
-        pc = self._pieces.get(key)
+    def _piece(self, mode, span) -> AffinePiece:
+        pc = self._pieces.get(mode)
         if pc is None:
-            pc = _Piece(self.p, mode, self.o, span)
-            self._pieces[key] = pc
+            pc = AffinePiece(self.p, mode, self.o.steps_per_period, self.o.max_step, span)
+            self._pieces[mode] = pc
         return pc
-
-    def _root(self, pc: _Piece, j, z0, a, b, ga, gb, guess=None):
-        """Safeguarded Newton for Cg[j] expm(A tau) z0 = 0 on [a, b] with g(a) > 0 >= g(b),
-        started from the Hermite-cubic root ``guess`` (exact for polynomial motion)."""
-        c, cA = pc.Cg[j], pc.CgA[j]
-        if gb == 0.0:
-            return b, _expm(pc.A * b) @ z0
-        tau = guess if guess is not None and a < guess < b else a + (b - a) * ga / (ga - gb)
-        zt = None
-        span = b
-        prev = np.inf
-        for it in range(60):
-            zt = _expm(pc.A * tau) @ z0
-            g, d = c @ zt, cA @ zt
-            if g == 0.0:
-                break
-            if g > 0:
-                a = tau
-            else:
-                b = tau
-            new = tau - g / d if d != 0 else 0.5 * (a + b)
-            if not (a <= new <= b):
-                new = 0.5 * (a + b)
-            step = abs(new - tau)
-            # converged: step at round-off level of the step length, or Newton stagnating on noise
-            if step <= 4e-16 * span or b - a <= 4e-16 * span or (it >= 2 and step >= 0.5 * prev and step <= 1e-12 * span):
-                tau = new
-                zt = _expm(pc.A * tau) @ z0
-                break
-            prev = step
-            tau = new
-        return tau, zt
-
-    def _refine_min(self, pc: _Piece, j, z0, tau, lo, hi):
-        """Newton on the guard's derivative to the exact local minimum near ``tau`` in [lo, hi]
-        (grazing detection: the cubic's minimum can miss a shallow dip)."""
-        best = None
-        for _ in range(8):
-            zt = _expm(pc.A * tau) @ z0
-            g, d, dd = pc.Cg[j] @ zt, pc.CgA[j] @ zt, pc.CgAA[j] @ zt
-            if best is None or g < best[2]:
-                best = (tau, zt, g)
-            if g <= 0 or dd <= 0:
-                break
-            new = min(max(tau - d / dd, lo), hi)
-            if abs(new - tau) <= 1e-15 * max(abs(tau), hi):
-                break
-            tau = new
-        return best
 
     def _propagate_exact(self, t, z, mode, t_end, rec, acc):
         pc = self._piece(mode, t_end - t)
-        h = pc.h
-        Cg, CgA = pc.Cg, pc.CgA
+        dt_out = float(self.o.output_step or 0.0)
+        buf = self._buffers
+        if buf is None or buf[1].shape[1] != pc.nz or (dt_out and buf[0].size < 2 * pc.h / dt_out + 16):
+            cap = 4096 if not dt_out else max(4096, int(2 * pc.h / dt_out) + 16)
+            buf = self._buffers = (np.empty(cap), np.empty((cap, pc.nz)), np.empty(cap))
+        out_t, out_z, out_W = buf
         first = True
+        energy = self.o.energy
+        hits = pc.hits
+        kernel = _kernel()
         while True:
-            hh = min(h, t_end - t)
-            if hh <= 0:
+            z_out = np.empty(pc.nz)
+            why, n, steps, t, W = kernel.advance(
+                pc.P, pc.R, pc.T, pc.G, pc.Q, pc.ng, pc.h, z, t, t_end, first, dt_out,
+                acc["W"], pc.work_total, out_t, out_z, out_W, z_out, hits)
+            z = z_out
+            acc["steps"] += steps
+            if energy:
+                acc["W"] = W
+            if n:
+                rec.extend(out_t[:n], out_z[:n], mode, out_W[:n] if energy else np.full(n, acc["W"]))
+            if why == kernel.EVENT:
+                return t, z, [pc.tags[j] for j in range(pc.ng) if hits[j]]
+            if why == kernel.END:
                 return t, z, []
-            P = pc.phi(hh)
-            z1 = P @ z
-            acc["steps"] += 1
-            g0, g1 = Cg @ z, Cg @ z1
-            d0, d1 = CgA @ z, CgA @ z1
-            cands = []
-            for j in range(g0.size):
-                a0, ga = 0.0, g0[j]
-                scale = abs(g0[j]) + abs(g1[j]) + hh * (abs(d0[j]) + abs(d1[j])) + 1e-300
-                if ga <= 1e-12 * scale:
-                    # starting on (or numerically just across) the boundary: admissible only if leaving it
-                    if first and d0[j] >= -1e-12 * scale / hh:
-                        tm = _hermite_argmax(g0[j], g1[j], d0[j], d1[j], hh)
-                        if tm is None:
-                            continue
-                        zm = _expm(pc.A * tm) @ z
-                        gm = Cg[j] @ zm
-                        if gm <= 0:
-                            cands.append((0.0, j, z))
-                            continue
-                        a0, ga = tm, gm
-                        if g1[j] > 0:
-                            # check for a return within the rest of the step
-                            tmin = _hermite_min(g0[j], g1[j], d0[j], d1[j], hh, lo=tm)
-                            if tmin is None:
-                                continue
-                            tmin, zmin, gmin = self._refine_min(pc, j, z, tmin, tm, hh)
-                            if gmin > 0:
-                                continue
-                            tr, zr = self._root(pc, j, z, a0, tmin, ga, gmin)
-                            cands.append((tr, j, zr))
-                            continue
-                    else:
-                        cands.append((0.0, j, z))
-                        continue
-                # bracket the FIRST crossing: a dip of the Hermite cubic before the step end (refined to
-                # the exact minimum) takes precedence over a sign change at the end of the step
-                b_end, gb = (hh, g1[j]) if g1[j] <= 0 else (None, None)
-                tmin = _hermite_min(g0[j], g1[j], d0[j], d1[j], hh, lo=a0)
-                if tmin is not None and tmin < hh * (1 - 1e-9):
-                    pmin = _hermite_eval(g0[j], g1[j], d0[j], d1[j], hh, tmin)
-                    if pmin < 0.05 * scale:
-                        tmin, zmin, gmin = self._refine_min(pc, j, z, tmin, a0, hh)
-                        if gmin <= 0 and tmin < hh * (1 - 1e-9):
-                            b_end, gb = tmin, gmin
-                if b_end is not None:
-                    guess = _hermite_first_root(g0[j], g1[j], d0[j], d1[j], hh, a0, b_end)
-                    tr, zr = self._root(pc, j, z, a0, b_end, ga, gb, guess)
-                    cands.append((tr, j, zr))
-            tend_step = min([c[0] for c in cands]) if cands else hh
-            if self.o.output_step:
-                dt_out = self.o.output_step
-                k0 = int(np.floor(t / dt_out)) + 1
-                for k in range(k0, k0 + int(tend_step / dt_out) + 2):
-                    tau = k * dt_out - t
-                    if not 0 < tau < tend_step:
-                        continue
-                    W = acc["W"] + (sum(self._quad_exact(pc, t, z, tau, mode).values()) if self.o.energy else 0.0)
-                    rec(t + tau, _expm(pc.A * tau) @ z, mode, W)
-            if self.o.energy:
-                if tend_step > 0:
-                    parts = self._quad_exact(pc, t, z, tend_step, mode)
-                    acc["W"] += sum(parts.values())
-                    for k_, w_ in parts.items():
-                        acc["Wp"][k_] = acc["Wp"].get(k_, 0.0) + w_
-            if cands:
-                tmin_ = min(c[0] for c in cands)
-                tol = 1e-12 * max(abs(t), hh, 1e-300)
-                hits = [(c[1], c[2]) for c in cands if c[0] <= tmin_ + tol]
-                zt = [c[2] for c in cands if c[0] == tmin_][0]
-                te = t + tmin_
-                return te, zt, [pc.tags[j] for j, _ in hits]
-            t, z = t + hh, z1
-            rec(t, z, mode, acc["W"])
             first = False
-            if t >= t_end:
-                return t, z, []
-
-    def _quad_exact(self, pc: _Piece, t, z, hh, mode) -> dict:
-        return {k: float(z @ G @ z) for k, G in pc.work_matrix(hh).items()}
 
     # -------------------------------------------------------- numeric pieces
     def _propagate_numeric(self, t, z, mode, t_end, rec, acc):
@@ -427,22 +303,25 @@ class EventDrivenSolver:
     # ----------------------------------------------------------- events
     def _apply(self, t, z, mode, trig, impact_ref):
         """Apply the element rules to the triggered guards; returns new z, mode, events, jump work."""
-        p = self.p
+        elements = self.p.elements
         ctx = EventContext(self, t, z, list(mode), impact_ref)
-        for (i, tag) in sorted(set(trig)):
+        for (i, tag) in (trig if len(trig) == 1 else sorted(set(trig))):
             ctx.i = i
-            p.elements[i].on_event(tag, ctx)
-        z, mode, records, limits = ctx.z, ctx.modes, ctx.records, ctx.limits
-        before = list(mode)
-        mode, out = self._consistent_mode(t, z, mode, limits)
-        for i, el in enumerate(p.elements):
-            if mode[i] != before[i] and i not in {r[0] for r in records}:
-                records.append([i, el.release_event()])
+            elements[i].on_event(tag, ctx)
+        z, records, before = ctx.z, ctx.records, ctx.modes
+        mode = self._consistent_mode(t, z, before, ctx.limits)
+        if mode != before:
+            recorded = {r[0] for r in records}
+            for i, el in enumerate(elements):
+                if mode[i] != before[i] and i not in recorded:
+                    records.append([i, el.release_event()])
         events = []
         for i, kind in records:
             if kind == "stop":
                 kind = "stick" if mode[i] == 0 else "reversal"
-            events.append(Event(t=t, kind=kind, element=p.elements[i].name, state=self._state_dict(z)))
+            ev = Event(t, kind, elements[i].name, {})
+            events.append(ev)
+            self._event_states.append((ev, z))
         return z, tuple(mode), events, ctx.jump
 
     # ------------------------------------------------------------- driver
@@ -450,17 +329,13 @@ class EventDrivenSolver:
         p, o = self.p, self.o
         if not t_end > t0:
             raise SolverError(f"t_end = {t_end!r} must exceed the start time {t0!r}")
+        self._t_end = t_end
+        self._event_states = []
+        for pc in self._pieces.values():
+            pc.work_total[:] = 0.0
         z = np.concatenate([p.q0, p.v0, p.basis(t0)])
         mode = self.initial_mode(t0, z)
-        ts, zs, ms, Ws = [t0], [z.copy()], [mode], [0.0]
-
-        def rec(tt, zz, md, W):
-            ts.append(tt)
-            zs.append(zz.copy())
-            ms.append(md)
-            Ws.append(W)
-            if o.progress is not None:
-                o.progress(tt)
+        rec = _Recorder(t0, z, mode, o.progress)
 
         acc = {"W": 0.0, "Wp": {}, "steps": 0, "rejections": 0}
         events: list[Event] = []
@@ -478,7 +353,7 @@ class EventDrivenSolver:
                     te, ze, trig = self._propagate_numeric(t, z, mode, t_end, rec, acc)
                 if not trig:
                     t, z = te, ze
-                    if ts[-1] != t:
+                    if rec.last_t != t:
                         rec(t, z, mode, acc["W"])
                     break
                 zero_len = zero_len + 1 if te == t else 0
@@ -504,32 +379,33 @@ class EventDrivenSolver:
         except SolverError as exc:
             stopped, reason = True, f"solver stopped at t = {t!r}: {exc}"
         except KeyboardInterrupt:
-            n = min(len(ts), len(zs), len(ms), len(Ws))
-            del ts[n:], zs[n:], ms[n:], Ws[n:]
-            stopped, reason = True, f"interrupted (Ctrl-C) at t = {ts[-1]!r}: the results up to there are kept"
-        return self._result(ts, zs, ms, Ws, events, t_end, n_pieces, acc, stopped, reason)
+            stopped, reason = True, "interrupted (Ctrl-C): the results up to there are kept"
+        return self._result(rec, events, t_end, n_pieces, acc, stopped, reason)
 
-    def _result(self, ts, zs, ms, Ws, events, t_end, n_pieces, acc, stopped, reason):
+    def _result(self, rec, events, t_end, n_pieces, acc, stopped, reason):
         p = self.p
-        T = np.array(ts)
-        Z = np.array(zs).T
+        for pc in self._pieces.values():           # the work of the exact pieces, by category
+            for k, part in enumerate(pc.parts):
+                acc["Wp"][part] = acc["Wp"].get(part, 0.0) + float(pc.work_total[k])
+        T, Z, modes, which, W = rec.arrays()
+        if stopped and reason.startswith("interrupted"):
+            reason = f"interrupted (Ctrl-C) at t = {T[-1]!r}: the results up to there are kept"
+        self._fill_event_states()
+        Z = np.ascontiguousarray(Z.T)
         q, v, e = Z[:p.nf], Z[p.nf:2 * p.nf], Z[2 * p.nf:]
         x, xd = p.full_state(q, v, e)
-        E = np.zeros(T.size)
+        E = p.linear_energy(0.0, x, v) if p.time_invariant else np.zeros(T.size)
         Fel = np.zeros((len(p.elements), T.size))
-        groups: dict = {}
-        for k, md in enumerate(ms):
-            groups.setdefault(md, []).append(k)
-        for md, ks in groups.items():          # vectorised per mode (time enters only through M(t))
-            ks = np.array(ks)
+        for m, md in enumerate(modes):         # vectorised per mode (time enters only through M(t))
+            ks = np.flatnonzero(which == m) if len(modes) > 1 else slice(None)
             if p.time_invariant:
-                E[ks] = p.energy(0.0, q[:, ks], v[:, ks], e[:, ks], md)
-                Fel[:, ks] = p.evaluate(0.0, q[:, ks], v[:, ks], e[:, ks], md)["F"]
+                E[ks] += p.potential_energy(q[:, ks], e[:, ks], md)
+                pc = self._pieces.get(md)
+                Fel[:, ks] = pc.Fm @ Z[:, ks] if pc is not None else p.evaluate(0.0, q[:, ks], v[:, ks], e[:, ks], md)["F"]
             else:
                 for k in ks:
                     E[k] = p.energy(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)[0]
                     Fel[:, k] = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)["F"][:, 0]
-        W = np.array(Ws)
         if self.o.energy:
             resid = (E - E[0]) - W
             scale = max(np.max(np.abs(E)), np.max(np.abs(W)), 1e-300)
@@ -553,85 +429,59 @@ class EventDrivenSolver:
         return res
 
 
-def _power_form(prob: Problem, mode, Fm, Sdm) -> dict:
-    """{part: symmetric Q} with power_part(z) = z^T Q z in an affine, time-invariant mode (by
-    polarization); parts that vanish identically are left out."""
-    nz = Fm.shape[1]
-    nf = prob.nf
-    iu = np.triu_indices(nz)
-    Z = np.zeros((nz, iu[0].size))
-    cols = np.arange(iu[0].size)
-    Z[iu[0], cols] += 1.0
-    Z[iu[1], cols] += 1.0 * (iu[0] != iu[1])
-    D = np.eye(nz)
-
-    def P(Zc):
-        return prob.power_parts(0.0, Zc[:nf], Zc[nf:2 * nf], Zc[2 * nf:], mode, Fm @ Zc, Sdm @ Zc)
-
-    pd, pz = P(D), P(Z)
-    out = {}
-    for part in prob.WORK_PARTS:
-        Q = np.zeros((nz, nz))
-        for k, (i, j) in enumerate(zip(*iu)):
-            if i == j:
-                Q[i, i] = pd[part][i]
-            else:
-                Q[i, j] = Q[j, i] = 0.5 * (pz[part][k] - pd[part][i] - pd[part][j])
-        if np.any(Q):
-            out[part] = Q
-    return out
+def _kernel():
+    """The compiled piece kernel, imported on first use (numba's import and the cached compiled code
+    cost ~0.5 s: commands that never integrate do not pay it)."""
+    from . import kernel
+    return kernel
 
 
-# -------------------------------------------------------------- Hermite helpers
-def _hermite_coeffs(g0, g1, d0, d1, h):
-    """Cubic p(s) = c0 + c1 s + c2 s^2 + c3 s^3 on [0, h] matching values and slopes."""
-    c0, c1 = g0, d0
-    c2 = (3 * (g1 - g0) / h - 2 * d0 - d1) / h
-    c3 = (d0 + d1 - 2 * (g1 - g0) / h) / h ** 2
-    return c0, c1, c2, c3
+class _Recorder:
+    """The recorded instants, states, modes and accumulated work: single samples (state vectors,
+    never changed in place by the solver; gathered in one array when a block follows) and blocks
+    of samples (copied from the kernel's buffers)."""
 
+    def __init__(self, t0, z0, mode, progress):
+        self.ts, self.Ws, self.zs, self.ms = [], [], [], []
+        self.singles = [(t0, z0.copy(), mode, 0.0)]
+        self.last_t = t0
+        self.progress = progress
 
-def _hermite_eval(g0, g1, d0, d1, h, s):
-    c0, c1, c2, c3 = _hermite_coeffs(g0, g1, d0, d1, h)
-    return c0 + s * (c1 + s * (c2 + s * c3))
+    def __call__(self, t, z, mode, W) -> None:
+        self.singles.append((t, z, mode, W))
+        self.last_t = t
+        if self.progress is not None:
+            self.progress(t)
 
+    def _flush(self) -> None:
+        rows = self.singles
+        if rows:
+            self.ts.extend([r[0] for r in rows])
+            self.zs.append(np.array([r[1] for r in rows]))
+            self.ms.extend([(r[2], 1) for r in rows])
+            self.Ws.extend([r[3] for r in rows])
+            self.singles = []
 
-def _crit(g0, g1, d0, d1, h, lo):
-    """Critical points of the Hermite cubic in (lo, h): roots of 3 c3 s^2 + 2 c2 s + c1."""
-    c0, c1, c2, c3 = _hermite_coeffs(g0, g1, d0, d1, h)
-    a, b, c = 3 * c3, 2 * c2, c1
-    if a == 0 or abs(a) * h <= 1e-14 * (abs(b) + abs(c) / h):
-        rs = [-c / b] if b != 0 else []
-    else:
-        disc = b * b - 4 * a * c
-        if disc < 0:
-            return []
-        sq = np.sqrt(disc)
-        qq = -0.5 * (b + np.copysign(sq, b))
-        rs = [qq / a] + ([c / qq] if qq != 0 else [])
-    return [float(r) for r in rs if lo < r < h]
+    def extend(self, times, Z, mode, W) -> None:
+        self._flush()
+        self.zs.append(Z.copy())
+        self.ms.append((mode, len(times)))
+        self.Ws.extend(W.tolist())
+        self.ts.extend(times.tolist())
+        self.last_t = self.ts[-1]
+        if self.progress is not None:
+            self.progress(self.last_t)
 
-
-def _hermite_first_root(g0, g1, d0, d1, h, lo, hi):
-    c0, c1, c2, c3 = _hermite_coeffs(g0, g1, d0, d1, h)
-    r = np.roots([c3, c2, c1, c0]) if (c3 or c2 or c1) else np.array([])
-    rs = sorted(float(x.real) for x in np.atleast_1d(r) if abs(x.imag) <= 1e-9 * h and lo < x.real <= hi)
-    return rs[0] if rs else None
-
-
-def _hermite_min(g0, g1, d0, d1, h, lo=0.0):
-    cs = _crit(g0, g1, d0, d1, h, lo)
-    if not cs:
-        return None
-    vals = [_hermite_eval(g0, g1, d0, d1, h, s) for s in cs]
-    return cs[int(np.argmin(vals))]
-
-
-def _hermite_argmax(g0, g1, d0, d1, h):
-    cs = _crit(g0, g1, d0, d1, h, 0.0) + [h]
-    vals = [_hermite_eval(g0, g1, d0, d1, h, s) for s in cs]
-    k = int(np.argmax(vals))
-    return cs[k] if vals[k] > 0 else None
+    def arrays(self):
+        """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W),
+        consistent even when a Ctrl-C struck halfway through a record."""
+        self._flush()
+        Z = np.concatenate(self.zs)
+        ids: dict = {}
+        counts = np.array([k for _, k in self.ms])
+        which = np.repeat([ids.setdefault(m, len(ids)) for m, _ in self.ms], counts)
+        n = min(len(self.ts), Z.shape[0], which.size, len(self.Ws))
+        return np.array(self.ts[:n]), Z[:n], list(ids), which[:n], np.array(self.Ws[:n])
 
 
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
@@ -682,7 +532,7 @@ class EventContext:
 
     def constraint_force(self) -> float:
         """The constraint force of the element in the current modes."""
-        return self.solver._eval(self.t, self.z, self.modes)["F"][self.i, 0]
+        return float(self.solver._forces(self.t, self.z, self.modes)[0][self.i])
 
     def impact_speed(self, speed: float) -> float:
         """The largest impact speed of the element so far (``speed`` included)."""

@@ -331,7 +331,9 @@ def forced(model: DriveModel, omegas, representation: str | None = None, delta: 
 
 # ------------------------------------------------------------------ comparison
 def _branches(omega: np.ndarray, k: float, R: int) -> tuple[np.ndarray, np.ndarray]:
-    omega = np.sort(omega[omega > 0])
+    """The first R roots below and above k; a root at k itself (to round-off: the continuum's
+    mode at the mechanism frequency) belongs to neither branch."""
+    omega = np.sort(omega[(omega > 0) & (np.abs(omega / k - 1) >= 1e-9)])
     lo, hi = omega[omega < k][:R], omega[omega > k][:R]
     pad = lambda a: np.concatenate([a, np.full(R - a.size, np.nan)])
     return pad(lo), pad(hi)

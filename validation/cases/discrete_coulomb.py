@@ -5,11 +5,14 @@ import math
 
 import numpy as np
 
+from fem.modelfile.source import read_toml
 from fem.study import simulate
 from validation.analytic import friction_ch8 as ref
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "textbook §4.3 (digest textbook_ch2-5.md V4.3a)"
+EXAMPLE = EXAMPLES / "discrete_coulomb_decay.toml"
 
 
 @case("discrete_coulomb_decay", group="discrete")
@@ -17,6 +20,7 @@ def coulomb_decay():
     """m = 1, c = 100, P = 1, q0 = 1.005 at rest: extrema drop by 2P/c per half-cycle (4P/c per
     period), each half-cycle lasts pi/k (period unchanged, 2 pi/k), the motion stops at the first
     extremum inside the dead band |q| <= F_s/c.  Run with F_s = P and with F_s = 1.5 P (earlier stop).
+    The model is examples/discrete_coulomb_decay.toml (the F_s = P run; the case sets F_s and t_end).
 
     The reference is exact for this piecewise-linear system; tolerance 1e-10 (relative to q0 for
     positions, to pi/k for times) leaves room for round-off over ~50 events (observed ~1e-14).
@@ -26,10 +30,10 @@ def coulomb_decay():
     k = math.sqrt(c / m)
     for Fs in (P, 1.5 * P):
         ext = ref.coulomb_extrema(q0, P, c, static=Fs)
-        doc = {"body": [{"name": "mass", "inertia": m, "x0": q0}],
-               "spring": [{"between": ["ground", "mass"], "k": c}],
-               "friction": [{"name": "dry", "body": "mass", "kinetic": P, "static": Fs}],
-               "simulation": {"t_end": (len(ext) + 2) * math.pi / k}}
+        doc = read_toml(EXAMPLE)
+        if Fs != P:
+            doc["friction"][0]["static"] = Fs
+        doc["simulation"]["t_end"] = (len(ext) + 2) * math.pi / k
         res = simulate(doc)
         turns = [e for e in res.events if e.kind in ("reversal", "stick")]
         xs = np.array([e.state["mass"]["x"] for e in turns])

@@ -1,29 +1,32 @@
 """Seed 000: relaxation friction self-oscillations with instantaneous velocity reversals."""
 from __future__ import annotations
 
+
 import numpy as np
 
+from fem.modelfile.source import read_toml
 from fem.study import simulate
 from validation.analytic import seed000 as ref
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "seed 000 (Belokobyl'sky & Koronatov 2013), (16)-(20)"
 I, C, M0 = 2.0, 50.0, 3.0
 GRID = [(eps, Om) for eps in (2.0, 4.0, 6.0, 8.0, 10.0) for Om in (0.5, 1.5)]
+EXAMPLE = EXAMPLES / "discrete_seed000_stick_slip.toml"
 
 
 def model(eps: float, Omega: float, periods: float = 4.5) -> dict:
-    """Dimensional model (I, c, omega, M0, M1) of the paper's Fig. 1 through its dimensionless map."""
+    """Dimensional model (I, c, omega, M0, M1) of the paper's Fig. 1 through its dimensionless map:
+    examples/discrete_seed000_stick_slip.toml (I = 2, c = 50, M0 = 3; eps = 6, Omega = 1.5 there) with
+    the drive speed omega and the breakaway level M1 of (eps, Omega) and the run length."""
     d = ref.dimensional(eps, Omega, I, C, M0)
     t_first = d["M1"] / (C * d["omega"])          # first breakaway from the relaxed start
-    return {
-        "title": f"seed 000 stick-slip, eps = {eps}, Omega = {Omega}",
-        "body": [{"name": "disk", "inertia": I}],
-        "driver": [{"name": "top", "velocity": d["omega"]}],
-        "spring": [{"between": ["top", "disk"], "k": C}],
-        "friction": [{"name": "bit", "body": "disk", "kinetic": M0, "static": d["M1"], "restick": "kinetic"}],
-        "simulation": {"t_end": t_first + periods * d["period"]},
-    }
+    doc = read_toml(EXAMPLE)
+    doc["driver"][0]["velocity"] = d["omega"]
+    doc["friction"][0]["static"] = d["M1"]
+    doc["simulation"] = {"t_end": t_first + periods * d["period"]}
+    return doc
 
 
 def measure(res) -> dict:

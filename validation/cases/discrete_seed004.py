@@ -5,9 +5,11 @@ import math
 
 import numpy as np
 
+from fem.modelfile.source import read_toml
 from fem.study import simulate
 from validation.analytic import seed004 as S
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "seed 004 (Olshanskii & Olshanskii 2014)"
 G_TABLES = 9.81     # tables 3-4 were computed with g = 9.81 (f g m0 = 14.715 N; with 9.8 they drift by 4e-4 cm per swing)
@@ -16,19 +18,23 @@ SUSPECT = {(("const", -3.0, 9.0, 1.0), 3): "printed 3,145; exact 3.134 (likely 3
            (("const", 3.0, 9.0, 1.0), 7): "printed 0,236*; exact 0.024 (likely 0,0236*, or the WKB solution failing at the stop)"}
 
 
+EXAMPLE = {"const": EXAMPLES / "discrete_seed004_variable_mass.toml",       # Table 1: delta = 3, mu = 2, eps = 0
+           "mass": EXAMPLES / "discrete_seed004_weight_friction.toml"}      # Table 4: delta = -3, mu = 5, eps = 1
+
+
 def model(friction: str, delta: float, mu: float, eps: float) -> dict:
     """Model file of (1)-(2): body m0 + delta t in Newton form with reactive coefficient eps
-    (reactive damping eps delta), viscous mu, spring c, Coulomb F_T (or f g m(t)), x(0) = -a0."""
-    doc = {"body": [{"name": "m", "inertia": S.M0, "inertia_rate": delta, "reactive": eps, "x0": -S.A0}],
-           "spring": [{"between": ["ground", "m"], "k": S.C}],
-           "constants": {"g": G_TABLES},
-           "simulation": {"t_end": 2.0 if delta > 0 else 1.6}}
+    (reactive damping eps delta), viscous mu, spring c, Coulomb F_T (or f g m(t)), x(0) = -a0:
+    examples/discrete_seed004_variable_mass.toml (F_T) or _weight_friction.toml (f g m(t)) with the
+    table's delta, mu and eps."""
+    doc = read_toml(EXAMPLE[friction])
+    doc["body"][0].update(inertia_rate=delta, reactive=eps)
+    doc["constants"] = {"g": G_TABLES}
+    doc["simulation"] = {"t_end": 2.0 if delta > 0 else 1.6}
     if mu:
-        doc["damper"] = [{"between": ["ground", "m"], "c": mu}]
-    if friction == "const":
-        doc["friction"] = [{"name": "dry", "body": "m", "kinetic": S.F_T}]
+        doc["damper"][0]["c"] = mu
     else:
-        doc["friction"] = [{"name": "dry", "body": "m", "mu": S.F_COEF, "normal": "weight"}]
+        del doc["damper"]
     return doc
 
 

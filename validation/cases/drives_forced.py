@@ -3,13 +3,17 @@ forms of (10.40)-(10.46) and (10.58)-(10.61) (digest errata), with regression gu
 printed forms are wrong.  References in validation.analytic.drives."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from discrete.transfer import RegularDrive
-from fem.drives import DriveModel, LumpedShaft, Mechanism, forced
+from fem.drives import DriveModel, forced
+from fem.study import Study
 from validation.analytic import drives as ref
-from validation.cases.drives_continuum import C, set_c
+from validation.cases.drives_continuum import C
 from validation.registry import case, check, claim, printed
+from validation.examples import EXAMPLES
 
 SRC_D = "seed 001 §10.4 (10.40)-(10.46), corrected (digest errata)"
 SRC_C = "seed 001 §10.5 (10.57)-(10.62), corrected (digest errata)"
@@ -17,8 +21,9 @@ D = ref.SET_D
 
 
 def set_d(boundary: str) -> DriveModel:
-    return DriveModel(n=D["n"], shaft=LumpedShaft(c0=D["c0"], J0=D["J0"]),
-                      mechanism=Mechanism(m=D["m"], c=D["c"], ratio=D["ratio"]), boundary=boundary, force=D["F"])
+    """Set D (n = 6, F = 1 N on every output) as examples/drive_forced.toml holds it, with the boundary
+    a check varies."""
+    return replace(Study.load(EXAMPLES / "drive_forced.toml").drive, boundary=boundary)
 
 
 def _args(case_no):
@@ -40,13 +45,12 @@ def drives_forced():
     w = 510: xi = 2.5, complex gamma) rel. 1e-8 (the closed form cancels like |eta|^n ~ 1e4 x eps;
     digest 1e-7..1e-8 at |xi| = 15); at w = k all a_0j = -F/(c Pi'); the printed
     (10.41)/(10.45) are off by > 10 %; case 1 has no resonance at even r (response ratio at
-    p_2 (1 +- 1e-6) vs p_1 (1 +- 1e-6) below 1e-3)."""
+    p_2 (1 +- 1e-6) vs p_1 (1 +- 1e-6) below 1e-3).
+    The drives are examples/drive_continuum.toml (a) and examples/drive_forced.toml (b)."""
     out = []
     # ---------------- (a) continuum
     n = 12
-    model = set_c(n, 64, 2)
-    from dataclasses import replace
-    model = replace(model, force=10.0 / n, representation="continuum")     # n F = 10 N in total
+    model = Study.load(EXAMPLES / "drive_continuum.toml").drive     # Set C, n F = 10 N, continuum P2 x 64
     omegas = np.array(sorted(ref.SET_C_FORCED_L))
     res = forced(model, omegas)
     i_L, i_half = n - 1, n // 2 - 1

@@ -3,11 +3,15 @@ spectra.  References from validation.analytic.drives (brentq on (10.36), formula
 (10.39)), independent of the package's closed forms and solvers."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from fem.drives import DistributedShaft, DriveModel, LumpedShaft, Mechanism, modal
+from fem.study import Study
 from validation.analytic import drives as ref
 from validation.registry import case, check, claim, printed
+from validation.examples import EXAMPLES
 
 SRC = "seed 001 §10.4 (10.34)-(10.39), (10.16)"
 
@@ -86,13 +90,18 @@ def drives_rigid_mechanisms():
     return out
 
 
+LARGE_N = EXAMPLES / "drive_large_n.toml"
+
+
 def _set_c_lumped(n: int, boundary: str) -> DriveModel:
-    """Set C with n mechanisms on a lumped shaft: segment c0 = GI n/L, discs J0 = rho0 L/n, m = 10/n."""
-    C = ref.SET_C
-    m = C["M_total"] / n
-    return DriveModel(n=n, shaft=LumpedShaft(c0=C["GI"] / C["L"] * n, J0=C["rho"] * C["L"] / n),
-                      mechanism=Mechanism(m=m, c=m * C["k"] ** 2, ratio=C["ratio"]), boundary=boundary,
-                      continuum_length=C["L"] / n, representation="discrete")
+    """Set C with n = 1000 mechanisms on a lumped shaft (segment c0 = GI n/L, discs J0 = rho0 L/n,
+    m = 10/n) as examples/drive_large_n.toml holds it (clamped-free), with the boundary a check varies."""
+    model = Study.load(LARGE_N).drive
+    if model.n != n:
+        raise ValueError(f"{LARGE_N.name} has n = {model.n}, not {n}")
+    # the file's [drive.continuum] length = 2.0 m is the continuum's total length L; the model keeps the
+    # per-segment length L/n (it only places the pseudo-medium estimates that seed the solver)
+    return replace(model, boundary=boundary, continuum_length=ref.SET_C["L"] / n)
 
 
 @case("drives-seeded-large-n", group="drives")
@@ -104,7 +113,8 @@ def drives_seeded_large_n():
     boundary cases.  Tolerance 1e-12: the eigenvalues come from cancellation-free spring
     energies (measured 4e-16), the reference is brentq to 1e-15.  Also: the Sylvester count
     certifies 20 modes, and estimates that skip the lowest mode never give a wrong answer
-    (the solver refuses; the Lanczos fallback returns the reference roots)."""
+    (the solver refuses; the Lanczos fallback returns the reference roots).  The drive is
+    examples/drive_large_n.toml."""
     from discrete.errors import SolverError
     from fem.drives.discrete import build_discrete
     from fem.drives.seeding import continuum_estimates

@@ -7,13 +7,16 @@ plus 1e-8 for double-precision rounding of the (h^-4-conditioned) eigenproblem.
 """
 from __future__ import annotations
 
+
 import numpy as np
 
 from fem import PointAttachment, assemble, modal_analysis
+from fem.study import Study
 from validation.analytic.bending import cantilever_tip_mass_roots, euler_bernoulli_omegas, euler_bernoulli_roots
 from validation.analytic.timoshenko import timoshenko_ss_omegas
 from validation.builders import STEEL, uniform
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 L, D, N = 1.5, 0.05, 30
 SRC = "seed 001 §4.11 (4.58)-(4.73)"
@@ -35,8 +38,10 @@ def _tol(beta_h):
     return 2 * beta_h**4 / 1440 + 1e-8
 
 
-def _beam_case(name, bc, n_modes=4, elements=N):
-    model = uniform("bending", L, elements, d=D, supports=BCS[bc])
+def _beam_case(name, bc, n_modes=4, elements=N, model=None):
+    """Frequencies of the steel beam (L, D, ``elements`` Hermite elements, supports of ``bc``), or of
+    ``model`` (an example file's shaft with these data), against the frequency equation."""
+    model = model or uniform("bending", L, elements, d=D, supports=BCS[bc])
     n_rigid = 2 if bc == "free-free" else 0
     res = modal_analysis(assemble(model).system, n_modes + n_rigid)
     EI, m = _props(model)
@@ -90,8 +95,9 @@ def beam_clamped_clamped():
 
 @case("beam-free-free", group="fe-bending")
 def beam_free_free():
-    """Free-free: cos(sigma L) ch(sigma L) = 1 plus two rigid-body modes (translation, rotation)."""
-    return _beam_case("beam-free-free", "free-free")
+    """Free-free: cos(sigma L) ch(sigma L) = 1 plus two rigid-body modes (translation, rotation).
+    The beam is examples/free_free_beam.toml."""
+    return _beam_case("beam-free-free", "free-free", model=Study.load(EXAMPLES / "free_free_beam.toml").shaft)
 
 
 @case("beam-cantilever-tip-mass", group="fe-bending")

@@ -7,15 +7,20 @@ twice that (plus 1e-10 for rounding).  The convergence case measures the orders.
 """
 from __future__ import annotations
 
+
 import numpy as np
 
-from fem import PointAttachment, assemble, modal_analysis
+from fem import assemble, modal_analysis
+from fem.modelfile.source import read_toml
+from fem.study import Study
 from validation.analytic.torsion import (end_disc_roots, reduced_inertia_omega, stepped_fixed_free_omegas,
                                          torsion_omegas, torsion_roots)
 from validation.builders import STEEL, uniform
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 L, D, N = 1.2, 0.05, 24
+EXAMPLE_DISC = EXAMPLES / "torsion_shaft_disc.toml"
 SRC = "seed 001 §4.10 (4.55)-(4.56)"
 
 
@@ -85,15 +90,18 @@ def torsion_end_disc():
     """Shaft clamped at 0 with a disc J2 at L: sigma L tan(sigma L) = J_shaft/J_disc (digest V2.2b).
     Also the book's reduced-inertia estimate k = sqrt(c/(J2 + J1/3)) (§2.2) and its error
     against the exact root, compared with the digest's table (+0.21 %, +0.66 %, +1.72 % for
-    J1/J2 = 0.5, 1, 2; printed to 2 digits -> tolerance 0.005 percentage points)."""
+    J1/J2 = 0.5, 1, 2; printed to 2 digits -> tolerance 0.005 percentage points).  The model is
+    examples/torsion_shaft_disc.toml (steel, L = 1.2 m, d = 50 mm, 24 P2 elements) with the disc
+    inertia of each ratio."""
     out = []
     model0 = uniform("torsion", L, 1, d=D)
     stiff, inert = _props(model0)
     J_shaft = inert * L
     for ratio, book_err in ((0.5, 0.21), (1.0, 0.66), (2.0, 1.72)):
         J_disc = J_shaft / ratio
-        model = uniform("torsion", L, N, d=D, supports=[(0.0, "clamped")],
-                        points=[PointAttachment(x=L, inertia=J_disc)])
+        doc = read_toml(EXAMPLE_DISC)
+        doc["point"][0]["inertia"] = J_disc
+        model = Study.parse(doc).shaft
         res = modal_analysis(assemble(model).system, 3)
         roots = end_disc_roots(ratio, 3)
         exact = roots * np.sqrt(stiff / L / J_shaft)

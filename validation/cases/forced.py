@@ -6,6 +6,7 @@ solve as a second method.
 """
 from __future__ import annotations
 
+
 import numpy as np
 from scipy.optimize import minimize_scalar
 
@@ -17,16 +18,15 @@ from validation.analytic import sdof
 from validation.analytic.torsion import forced_torsion_end_amplitude
 from validation.builders import unit_section, uniform
 from validation.registry import case, check, claim, printed
+from validation.examples import EXAMPLES
 
 M, C = 1.0, 100.0  # SDOF: k = 10 rad/s
 
 
-def _sdof(delta: float, base: bool = False) -> LumpedModel:
+def _sdof(delta: float) -> LumpedModel:
     doc = {"body": [{"name": "m", "inertia": M}],
-           "spring": [{"between": ["base" if base else "ground", "m"], "k": C}],
-           "damper": [{"between": ["base" if base else "ground", "m"], "c": 2 * delta * np.sqrt(C * M)}]}
-    if base:
-        doc["driver"] = [{"name": "base", "amplitude": 1.0, "omega": 1.0}]
+           "spring": [{"between": ["ground", "m"], "k": C}],
+           "damper": [{"between": ["ground", "m"], "c": 2 * delta * np.sqrt(C * M)}]}
     return Study.parse(doc).lumped
 
 
@@ -86,15 +86,16 @@ def sdof_peak_location():
 def sdof_kinematic():
     """Base (support) motion x0 cos(omega t) through spring and damper (5.26): relative
     amplitude x0 alpha_1(z) (5.28) with the same phase (5.24) (exact: 1e-10); the relative
-    peak is at z = 1/sqrt(1 - 2 delta^2) with value 1/(2 delta sqrt(1-delta^2)) (digest V5.5a)."""
+    peak is at z = 1/sqrt(1 - 2 delta^2) with value 1/(2 delta sqrt(1-delta^2)) (digest V5.5a).
+    The model is examples/sdof_base_motion.toml (m = 1, c = 100, damper 2 delta sqrt(c m) = 1), driven
+    here by a unit base amplitude."""
     out = []
     k = np.sqrt(C / M)
     delta = 0.05
-    model = _sdof(delta, base=True)
-    sys_ = model.linear_system()
-    base = sys_.dof_index(name="base")
+    sys_ = Study.load(EXAMPLES / "sdof_base_motion.toml").linear_system()
+    base, mass = sys_.dof_index(name="base"), sys_.dof_index(name="mass")
     z = np.array([0.5, 1.0, 2.0, 3.0])
-    res = harmonic_response(sys_, z * k, base_motion={base: 1.0}, outputs=[sys_.dof_index(name="m")])
+    res = harmonic_response(sys_, z * k, base_motion={base: 1.0}, outputs=[mass])
     rel = np.abs(res.relative[:, 0])
     out += [check("sdof-kinematic", "seed 001 (5.28)", f"alpha_1(z = {zi})", a, b, 1e-10)
             for zi, a, b in zip(z, sdof.kinematic_amplification(z, delta), rel)]
@@ -102,10 +103,10 @@ def sdof_kinematic():
     out += [check("sdof-kinematic", "seed 001 (5.24)", f"gamma(z = {zi}) of relative motion", a, b, 1e-10, scale=np.pi)
             for zi, a, b in zip(z, sdof.phase_lag(z, delta), lag)]
     val, tol = printed("1.124210")
-    r3 = harmonic_response(sys_, [3.0 * k], base_motion={base: 1.0}, outputs=[sys_.dof_index(name="m")])
+    r3 = harmonic_response(sys_, [3.0 * k], base_motion={base: 1.0}, outputs=[mass])
     out.append(check("sdof-kinematic", "digest V5.5a", "alpha_1(3), delta = 0.05", val, abs(r3.relative[0, 0]), tol))
     # modal superposition with exact quasi-static part = direct
-    res_m = harmonic_response(sys_, z * k, base_motion={base: 1.0}, outputs=[sys_.dof_index(name="m")], method="modal",
+    res_m = harmonic_response(sys_, z * k, base_motion={base: 1.0}, outputs=[mass], method="modal",
                               n_modes=1)
     out.append(check("sdof-kinematic", "second method (modal)", "max |modal - direct| / |direct|", 0.0,
                      float(np.max(np.abs(res_m.response - res.response) / np.abs(res.response))), 1e-10, scale=1.0))
@@ -249,9 +250,10 @@ def base_motion_modal_vs_direct():
     resonance); with 8 modes the neglected dynamic part is
     below (omega_max / omega_9)^2 (each omitted mode responds with omega^2 / (omega_r^2 - omega^2)
     of its quasi-static share, which is at most the whole), and the tip amplitude tends to
-    the base amplitude as omega -> 0 (rigid translation)."""
-    fe = assemble(uniform("bending", 1.0, 30, d=0.03, supports=[(0.0, "clamped")]))
-    sys_ = fe.system
+    the base amplitude as omega -> 0 (rigid translation).  The beam is
+    examples/beam_base_excitation.toml (steel, L = 1 m, d = 30 mm, 30 Hermite elements); the case sets
+    its own damping and a unit base amplitude."""
+    sys_ = Study.load(EXAMPLES / "beam_base_excitation.toml").linear_system()
     base, tip = sys_.dof_index(field="w", x=0.0), sys_.dof_index(field="w", x=1.0)
     modes = modal_analysis(sys_, 9)
     om = np.linspace(0.01, 1.0, 80) * modes.omega_rad_s[3]

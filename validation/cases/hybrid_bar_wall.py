@@ -3,20 +3,19 @@ from __future__ import annotations
 
 import copy
 import math
-import pathlib
-import tomllib
 
 import numpy as np
 
 from validation.analytic.hybrid_refs import bar_wall
 from validation.registry import case, check, claim
+from fem.modelfile.source import read_toml
+from validation.examples import EXAMPLES
 
-EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "hybrid_bar_wall.toml"
+EXAMPLE = EXAMPLES / "hybrid_bar_wall.toml"
 
 
 def _doc():
-    with open(EXAMPLE, "rb") as fh:
-        return tomllib.load(fh)
+    return read_toml(EXAMPLE)
 
 
 def bar_metrics(doc: dict) -> dict:

@@ -4,21 +4,20 @@ from __future__ import annotations
 
 import copy
 import math
-import pathlib
-import tomllib
 
 import numpy as np
 
 from validation.analytic import seed000
 from validation.registry import case, check, claim
+from fem.modelfile.source import read_toml
+from validation.examples import EXAMPLES
 
-EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "hybrid_drill_string.toml"
+EXAMPLE = EXAMPLES / "hybrid_drill_string.toml"
 EPS, I_BIT, C, M0, OMEGA = 6.0, 2.0, 50.0, 3.0, 0.45
 
 
 def _doc():
-    with open(EXAMPLE, "rb") as fh:
-        return tomllib.load(fh)
+    return read_toml(EXAMPLE)
 
 
 def string_period(doc: dict, cycles: int = 3) -> dict:

@@ -4,19 +4,18 @@ from __future__ import annotations
 
 import copy
 import math
-import pathlib
-import tomllib
 
 import numpy as np
 
 from validation.registry import case, check, claim
+from fem.modelfile.source import read_toml
+from validation.examples import EXAMPLES
 
-EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "hybrid_vibro_impact_beam.toml"
+EXAMPLE = EXAMPLES / "hybrid_vibro_impact_beam.toml"
 
 
 def _doc():
-    with open(EXAMPLE, "rb") as fh:
-        return tomllib.load(fh)
+    return read_toml(EXAMPLE)
 
 
 def variant(modes: int | None, t_end: float | None = None, elements: int | None = None) -> dict:

@@ -6,6 +6,7 @@ Exact relations get 1e-10; the digest's printed numbers get half a unit of the l
 """
 from __future__ import annotations
 
+
 import numpy as np
 
 from discrete.dunkerley import dunkerley_bound
@@ -13,8 +14,11 @@ from fem import Material, PointAttachment, Section, Segment, ShaftModel, Support
 from validation.analytic import bending as eb
 from validation.analytic.lumped_refs import (geared_drive_314, geared_drive_314_driven, two_discs,
                                              two_mass_three_spring)
+from fem.modelfile.source import read_toml
 from fem.study import Study
 from validation.registry import case, check, claim, printed
+from validation.examples import EXAMPLES
+
 
 
 def _pr(text: str, computed: float):
@@ -30,12 +34,10 @@ def _omegas(doc: dict, n: int):
 @case("lumped-two-mass-chain", group="lumped")
 def lumped_two_mass_chain():
     """Wall-c-m-c-m-c-wall (§4.4, Fig. 4.7): k = sqrt(c/m), sqrt(3c/m); partial frequency
-    p = sqrt(2c/m) lies between them; form coefficients +1, -1 (exact)."""
+    p = sqrt(2c/m) lies between them; form coefficients +1, -1 (exact).  The model is
+    examples/two_mass_chain.toml (m = 1 kg, c = 1000 N/m)."""
     m, c = 1.0, 1000.0
-    doc = {"body": [{"name": "m1", "inertia": m}, {"name": "m2", "inertia": m}],
-           "spring": [{"between": ["ground", "m1"], "k": c}, {"between": ["m1", "m2"], "k": c},
-                      {"between": ["m2", "ground"], "k": c}]}
-    res = _omegas(doc, 2)
+    res = _omegas(read_toml(EXAMPLES / "two_mass_chain.toml"), 2)
     ref = two_mass_three_spring(m, c)
     beta = res.shapes[1] / res.shapes[0]
     p = np.sqrt(2 * c / m)
@@ -66,16 +68,12 @@ GEARED = dict(J1=1.0, J2=0.5, J3=0.2, J4=2.0, u21=0.5, c1=1000.0, c2=500.0)
 
 
 def _geared_doc(driven: bool) -> dict:
-    g = GEARED
-    first = {"name": "J1", "inertia": g["J1"]}
-    doc = {"body": [{"name": "J2", "inertia": g["J2"]}, {"name": "J3", "inertia": g["J3"]},
-                    {"name": "J4", "inertia": g["J4"]}],
-           "spring": [{"between": ["J1", "J2"], "k": g["c1"]}, {"between": ["J3", "J4"], "k": g["c2"]}],
-           "gear": [{"between": ["J2", "J3"], "ratio": g["u21"]}]}
+    """examples/geared_drive.toml (motor J1, gear1 J2, gear2 J3, drum J4 of GEARED); ``driven``: the
+    motor's angle prescribed (a driver instead of the first body)."""
+    doc = read_toml(EXAMPLES / "geared_drive.toml")
     if driven:
-        doc["driver"] = [{"name": "J1", "velocity": 1.0}]
-    else:
-        doc["body"].insert(0, first)
+        motor = doc["body"].pop(0)
+        doc["driver"] = [{"name": motor["name"], "velocity": 1.0}]
     return doc
 
 
@@ -83,7 +81,8 @@ def _geared_doc(driven: bool) -> dict:
 def lumped_geared_drive():
     """Drive of Fig. 2.1g, equations (3.14): the package eliminates the gear from absolute
     angles; the reference builds a_ik, c_ik in the book's relative coordinates (3.9)-(3.11).
-    Digest V3.2a: 0, 17.6739, 54.6176 rad/s; V3.2b (input disc driven): 14.7950, 45.5693."""
+    Digest V3.2a: 0, 17.6739, 54.6176 rad/s; V3.2b (input disc driven): 14.7950, 45.5693.
+    The model is examples/geared_drive.toml."""
     out = []
     res = _omegas(_geared_doc(False), 3)
     ref = geared_drive_314(**GEARED)

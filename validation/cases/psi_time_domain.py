@@ -241,10 +241,9 @@ def sdof_energy_decay():
 def fe_bar_modal():
     """The issue's hybrid bar: a clamped-free axial FE bar (10 quadratic elements) with segment psi = 0.8.
 
-    In units where E = rho = A = L = 1 (omega_1 ~ pi/2): the event solver's Pade exponential
-    (discrete.linalg.expm.expm_small, scaling by the 1-norm of A) loses ~3e-8 per step on the same bar in
-    SI units (steel, omega_1 = 8150 rad/s: ~20 squarings of an unbalanced [q, v] matrix), which would
-    bias the measured decrement by 5e-8 -- a solver matter, reported, not a property of the damping.
+    In units where E = rho = A = L = 1 (omega_1 ~ pi/2).  (Before issue 13 the event solver's Pade
+    exponential, scaled by the 1-norm of an unbalanced [q, v] matrix, lost ~3e-8 per step on the same bar
+    in SI units; its pieces now use the balanced local expansion, exact to round-off.)
 
     * uniform psi: every mode's psi* (9.14) is 0.8 (the weights sum to 1; round-off, 1e-12);
     * modal form, free decay started in mode 1 and in mode 2, integrated in time: log decrement per cycle

@@ -5,21 +5,23 @@ from __future__ import annotations
 import numpy as np
 
 from discrete.steady import HBModel, ShootingModel, estimates
+from fem.modelfile.source import read_toml
 from fem.study import steady_model
 from validation.analytic.steady_refs import den_hartog_amplitude
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "Den Hartog (1930) closed form; textbook §9.2 (harmonic linearisation), §5.13 (5.75)"
 M, K, P, F0 = 1.0, 1.0, 0.3, 1.0
 OMEGAS = (0.6, 0.8, 1.3, 1.6)
+EXAMPLE = EXAMPLES / "steady_coulomb.toml"
 
 
 def doc(method="shooting", c=0.0, **steady):
-    d = {"title": "Coulomb oscillator", "body": [{"name": "mass", "inertia": M}],
-         "spring": [{"between": ["ground", "mass"], "k": K}],
-         "friction": [{"name": "dry", "body": "mass", "kinetic": P}],
-         "force": [{"body": "mass", "amplitude": F0, "omega": 1.0}],
-         "steady": {"method": method, "omega": [0.5, 2.0], "response": {"body": "mass"}, **steady}}
+    """examples/steady_coulomb.toml (m = k = 1, P = 0.3, F0 = 1) with its [steady] table replaced by
+    ``method`` over w = 0.5 .. 2 (and ``steady``), and a viscous damper c where given."""
+    d = read_toml(EXAMPLE)
+    d["steady"] = {"method": method, "omega": [0.5, 2.0], "response": {"body": "mass"}, **steady}
     if c:
         d["damper"] = [{"between": ["ground", "mass"], "c": c}]
     return d
@@ -39,6 +41,7 @@ def coulomb():
     checked only to be below 7 %.  HB with 15 harmonics is within 0.6 % of the exact amplitude.
     (c) Energy balance (5.75) with viscous damping c = 0.05 at resonance w = w0: A* = (pi F0 - 4P)/(pi c w)
     against shooting, tolerance 1e-3 (the estimate neglects the higher harmonics of the friction force).
+    The oscillator is examples/steady_coulomb.toml.
     """
     out = []
     sm = steady_model(doc())

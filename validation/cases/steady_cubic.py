@@ -5,23 +5,27 @@ from __future__ import annotations
 import numpy as np
 
 from discrete.steady import HBModel, backbone, estimates
+from fem.modelfile.source import read_toml
 from fem.study import forced, steady_model
 from validation.analytic.steady_refs import duffing_backbone_exact, duffing_rk4_sweep
 from validation.registry import case, check, claim, printed
+from validation.examples import EXAMPLES
 
 SRC = "textbook §8.3-8.4 (8.20)-(8.23); digest textbook_ch6-9.md [C] checks for 8.4"
 BACKBONE_TABLE = [(0.1, 1.0, "1.036717"), (0.5, 1.0, "1.170781"), (1.0, 1.0, "1.317776"), (0.5, 2.0, "1.569106"),
                   (1.0, 2.0, "1.976016")]
 
 
-def forced_doc(harmonics=7, measure="h1", omega=(0.5, 2.2)):
-    return {"title": "forced cubic oscillator", "body": [{"name": "mass", "inertia": 1.0}],
-            "spring": [{"between": ["ground", "mass"], "k": 1.0}],
-            "damper": [{"between": ["ground", "mass"], "c": 0.1}],
-            "cubic_spring": [{"between": ["ground", "mass"], "k3": 0.5}],
-            "force": [{"body": "mass", "amplitude": 0.25, "omega": 1.0}],
-            "steady": {"method": "hb", "omega": list(omega), "harmonics": harmonics,
-                       "response": {"body": "mass", "measure": measure}}}
+EXAMPLE = EXAMPLES / "steady_duffing.toml"
+
+
+def forced_doc(harmonics=None):
+    """examples/steady_duffing.toml: q'' + 0.1 q' + q + 0.5 q^3 = 0.25 sin(w t), HB with 7 harmonics over
+    w = 0.5 .. 2.2, fundamental amplitude; ``harmonics`` replaces the file's 7."""
+    doc = read_toml(EXAMPLE)
+    if harmonics is not None:
+        doc["steady"]["harmonics"] = harmonics
+    return doc
 
 
 @case("steady_cubic_backbone", group="steady")
@@ -66,6 +70,7 @@ def cubic_forced():
     independent code) swept up and down in steps of 0.01 jumps down between the two sweep frequencies that
     bracket w_R and up between those that bracket w_L; its amplitudes on both branches agree with HB to 2e-3
     (RK4 at 64 steps/period: ~1e-5; settling to 1e-9 over a period; the digest quotes <= 0.9 %).
+    The model and the 7-harmonic continuation are examples/steady_duffing.toml.
     """
     out = []
     r1 = forced(forced_doc(harmonics=1))
@@ -81,7 +86,7 @@ def cubic_forced():
         X, _ = hb.solve(hb.linear_guess(w), w)
         ref, tol = printed(txt)
         out.append(check(f"(8.17) amplitude w = {w}", SRC, "A", ref, float(np.hypot(X[1], X[2])), tol))
-    r7 = forced(forced_doc(harmonics=7))
+    r7 = forced(forced_doc())
     f7 = sorted(f["omega"] for f in r7.folds)
     # stability pattern: along the branch, points between the two folds are unstable
     i_r = int(np.argmax(r7.omega * (r7.response > 1.0)))  # right fold index (top of the upper branch)
@@ -102,7 +107,7 @@ def cubic_forced():
     out.append(claim("down-sweep jumps up across the left fold", SRC, "w_j - 0.01 <= w_L(H=7) < w_j",
                      bool(dn[jd + 1] <= f7[0] < dn[jd]), note=f"jump between {dn[jd]} and {dn[jd + 1]}, fold {f7[0]:.5f}"))
     # amplitudes: compare with the HB branch point nearest in (omega, amplitude)
-    hb7 = HBModel(steady_model(forced_doc(harmonics=7)).system, harmonics=7)
+    hb7 = HBModel(steady_model(forced_doc()).system, harmonics=7)
     errs = []
     for ws, amps in ((up, a_up), (dn, a_dn)):
         for w, a in zip(ws[::5], amps[::5]):

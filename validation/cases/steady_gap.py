@@ -1,22 +1,26 @@
 """Steady case 4: the backlash (gap) oscillator under a harmonic force -- HB (penalty law) vs exact shooting."""
 from __future__ import annotations
 
+
 import numpy as np
 
 from discrete.steady import ShootingModel
+from fem.modelfile.source import read_toml
 from fem.study import forced, steady_model
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "textbook §11.1 (11.1) gap oscillator (discrete issue), forced; HB vs event-driven shooting"
 
 
+EXAMPLE = EXAMPLES / "steady_gap.toml"
+
+
 def gap_doc(**steady):
-    return {"title": "forced backlash oscillator", "body": [{"name": "mass", "inertia": 1.0}],
-            "gap": [{"name": "backlash", "body": "mass", "k": 1.0, "delta": 0.1}],
-            "damper": [{"between": ["ground", "mass"], "c": 0.1}],
-            "force": [{"body": "mass", "amplitude": 0.3, "omega": 1.0}],
-            "steady": {"method": "hb", "omega": [0.5, 1.4], "harmonics": 15, "ds_max": 0.2,
-                       "response": {"body": "mass", "measure": "amplitude"}, **steady}}
+    """examples/steady_gap.toml (HB, 15 harmonics) continued over w = 0.5 .. 1.4 with ds_max = 0.2."""
+    d = read_toml(EXAMPLE)
+    d["steady"].update({"omega": [0.5, 1.4], "ds_max": 0.2, **steady})
+    return d
 
 
 @case("steady_gap_hb_vs_shooting", group="steady")
@@ -28,6 +32,7 @@ def gap_case():
     Tolerance 1e-3: the HB truncation error of a kinked (C0) force law decays like H^-2.5, measured 3.6e-4
     at H = 15.  Stability: each shooting orbit is reached from rest by time integration (so it is stable), and
     HB marks those points stable; the shooting Floquet multipliers are inside the unit circle.
+    The oscillator is examples/steady_gap.toml (the case continues over 0.5 .. 1.4).
     """
     out = []
     r = forced(gap_doc())

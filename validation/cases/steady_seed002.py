@@ -1,28 +1,47 @@
 """Steady case 1: seed 002 -- the spool with a tension-only strand and a friction clutch, AFCs mu(z)."""
 from __future__ import annotations
 
+
 import numpy as np
 
 from discrete.steady import HBModel, ShootingModel
+from fem.modelfile.source import read_toml
 from fem.study import forced, steady_model
-from validation.analytic.steady_seed002 import AMPLITUDES, F0, K_NAT, seed002_doc, linear_mu
+from validation.analytic.steady_seed002 import AMPLITUDES, F0, K_NAT, M0, seed002_doc, linear_mu
 from validation.registry import case, check, claim
+from validation.examples import EXAMPLES
 
 SRC = "seed 002 (Khromov et al. 2012) (1)-(2), Figs. 4-5 and text"
 _CACHE: dict = {}
+EXAMPLE_FILES = {(8.6e-4, "simple"): EXAMPLES / "steady_seed002.toml",
+                 (4.7e-4, "simple"): EXAMPLES / "sweep_seed002.toml"}
+"""The spools of the catalogue that an example file holds (HB, 15 harmonics over z = 0.3 .. 2, stability)."""
+
+
+def spool_doc(a: float, friction: str = "simple", **steady) -> dict:
+    """The spool of cam amplitude ``a`` and friction model ``friction``: the example file that holds it
+    (its [steady] table updated by ``steady``; the clutch torque set to M0 = F0 r as computed here, from
+    which the file's 1.35 differs in the last bit), else validation.analytic.steady_seed002.seed002_doc."""
+    path = EXAMPLE_FILES.get((a, friction))
+    if path is None:
+        return seed002_doc(a, friction, **steady)
+    d = read_toml(path)
+    d["friction"][0]["kinetic"] = M0
+    d["steady"].update(steady)
+    return d
 
 
 def curves(friction: str, stability: bool):
     key = (friction, stability)
     if key not in _CACHE:
-        _CACHE[key] = {a: forced(seed002_doc(a, friction, z=(0.3, 2.0), stability=stability)) for a in AMPLITUDES}
+        _CACHE[key] = {a: forced(spool_doc(a, friction, stability=stability)) for a in AMPLITUDES}
     return _CACHE[key]
 
 
 def min_tension(a, friction, r):
     """Smallest strand tension (N) over each HB point of curve r (signed: negative = would be slack,
     i.e. the strand did slacken; the tension itself is clipped at zero by the one-sided law)."""
-    sm = steady_model(seed002_doc(a, friction))
+    sm = steady_model(spool_doc(a, friction))
     hb = HBModel(sm.system, harmonics=15)
     out = []
     el = sm.system.elements.index(next(e for e in sm.system.elements if e.name == "strand"))
@@ -58,7 +77,9 @@ def seed002_afc():
     a statement checked with numbers (which of the paper's statements hold is in the notes); (v) the
     energy-balance estimate (§5.13) of the resonant spool amplitude at z = 1, a = 1e-4 with the combined
     power-law losses against HB: 2e-3 (it assumes a harmonic response at 90 deg phase; observed 6e-4 for
-    the simplified model, where the strand slackens marginally, and 7e-5 for the combined one)."""
+    the simplified model, where the strand slackens marginally, and 7e-5 for the combined one).
+    The simplified-model spools of a = 8.6e-4 and 4.7e-4 are examples/steady_seed002.toml and
+    examples/sweep_seed002.toml (its [steady] table)."""
     out = []
     simple = curves("simple", True)
     comb = curves("combined", False)
@@ -142,7 +163,7 @@ def seed002_afc():
 
 
 def _shoot_vs_hb(a, friction, r):
-    sm = steady_model(seed002_doc(a, friction))
+    sm = steady_model(spool_doc(a, friction))
     hb = HBModel(sm.system, harmonics=15)
     i = int(np.argmax(r.response))
     w = float(r.omega[i])
@@ -157,7 +178,7 @@ def _shoot_vs_hb(a, friction, r):
 
 
 def _period2(a, z):
-    sm = steady_model(seed002_doc(a, "simple"))
+    sm = steady_model(spool_doc(a, "simple"))
     w = z * K_NAT
     sh1 = ShootingModel(sm.factory)
     sh2 = ShootingModel(sm.factory, nu=2)
@@ -192,7 +213,7 @@ def seed002_time_sweeps():
     for a in (4.7e-4, 8.6e-4):
         r = curves("simple", True)[a]
         s = summary(r)
-        sm = steady_model(seed002_doc(a, "simple"))
+        sm = steady_model(spool_doc(a, "simple"))
         hb = HBModel(sm.system, harmonics=15)
         sh = ShootingModel(sm.factory, steps_per_period=48)
         sc = np.array([0.01, 0.5])

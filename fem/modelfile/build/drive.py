@@ -16,8 +16,10 @@ def drive_model(doc) -> DriveModel:
     me = d.mechanism
     c = me.c if me.c is not None else me.m * me.k ** 2
     co = d.continuum
-    return DriveModel(n=d.n, shaft=shaft, mechanism=Mechanism(m=me.m, c=c, ratio=me.ratio, output=me.output),
-                      boundary=d.boundary, representation=d.representation,
-                      force=d.load.force if d.load is not None else 0.0, continuum_elements=co.elements,
-                      continuum_order=co.order, continuum_length=1.0 if co.length is None else co.length,
-                      title=doc.title)
+    model = DriveModel(n=d.n, shaft=shaft, mechanism=Mechanism(m=me.m, c=c, ratio=me.ratio, output=me.output),
+                       boundary=d.boundary, representation=d.representation,
+                       force=d.load.force if d.load is not None else 0.0, continuum_elements=co.elements,
+                       continuum_order=co.order, title=doc.title)
+    if co.length is not None:            # the file gives the whole length; the model keeps it per segment
+        model.continuum_length = co.length / model.n_segments
+    return model

@@ -94,7 +94,7 @@ class DriveContinuum(Table):
     order: Literal[1, 2] = 2
     """Lagrange order of the continuum model."""
     length: Positive | None = None
-    """Lumped shafts only: notional length of the continuum, m (default 1 per segment)."""
+    """Lumped shafts only: length of the continuum (the whole drive), m; default 1 m per segment."""
 
 
 class Drive(Table):

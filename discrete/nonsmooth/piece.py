@@ -1,0 +1,135 @@
+"""One exact piece of the event-driven solver: an affine, time-invariant mode, ``z' = A z``.
+
+Everything here depends on the mode only, so it is computed once per distinct mode and reused
+at every return to it (stick, slip forward and slip backward repeat all run long):
+
+* the step ``h <= 2 pi / (steps_per_period rho(A))`` and its propagator ``Phi(h) = expm(A h)``;
+* the guard rows ``Cg`` and their time derivatives ``Cg A`` (values and slopes at the step
+  ends: the Hermite model of the event search);
+* the exact work matrices ``G_p(h) = int_0^h Phi^T Q_p Phi ds`` of every power category
+  (Van Loan 1978), so the work over a step is ``z^T G_p z``, and the power forms ``Q_p``;
+* the local expansion about a step start, ``z(t_k + sigma h) = sum_j sigma^j T_j z_k`` with
+  ``T_j = (h A)^j / j!`` formed in the balanced coordinates of A (scipy's ``matrix_balance``,
+  exact power-of-two scaling).  On a step with ``rho h <= 2 pi / steps_per_period`` the terms
+  fall from j = 0 on; the series is cut where they drop below 1e-17 relative, so it is the
+  exact solution to round-off.  Along it every guard is a polynomial in sigma and the work is
+  a polynomial integral: events are located by Newton on the polynomial, without a matrix
+  exponential per iteration (:mod:`discrete.nonsmooth.kernel`).  A nilpotent A (stick under
+  polynomial drives) gives a finite, exact series on any step.  A mode whose balanced ``h A``
+  is too non-normal for the expansion on h (terms growing above 16 before they fall) gets a
+  shorter step (h halved until they do not; ``halvings`` counts it).
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm, matrix_balance
+
+from ..errors import SolverError
+
+TAYLOR_TOL = 1e-17         # last term kept, relative to the identity term
+TAYLOR_MAX = 48            # most terms of the local expansion
+TAYLOR_GROWTH = 16.0       # largest term (1-norm, balanced) for which the expansion is used
+
+
+class AffinePiece:
+    """Cached linear maps, propagator, work matrices and local expansion of one mode (contiguous
+    float arrays, as :func:`discrete.nonsmooth.kernel.advance` takes them)."""
+
+    def __init__(self, prob, mode, steps_per_period: int, max_step: float | None, span: float):
+        self.A, self.Cg, self.tags, self.Fm, self.Sm, self.Sdm = prob.linear_maps(mode)
+        self.rows = prob.constraint_rows(mode)
+        self.R = np.ascontiguousarray(np.vstack([self.Cg, self.Cg @ self.A]))
+        self.ng = self.Cg.shape[0]
+        self.nz = self.A.shape[0]
+        ev = np.linalg.eigvals(self.A)
+        rho = float(np.max(np.abs(ev))) if ev.size else 0.0
+        h = np.inf if rho == 0 else 2 * np.pi / (steps_per_period * rho)
+        if max_step:
+            h = min(h, max_step)
+        h = min(h, span)
+        T = _taylor_terms(self.A, h)
+        self.halvings = 0
+        while T is None and self.halvings < 40:       # too non-normal on h: a shorter step
+            h *= 0.5
+            self.halvings += 1
+            T = _taylor_terms(self.A, h)
+        if T is None:
+            raise SolverError(f"no convergent local expansion of the mode {mode!r} (A not finite?)")
+        self.h, self.T = h, T
+        self.P = np.ascontiguousarray(T.sum(axis=0))   # expm(A h): the expansion at s = 1
+        Q = power_form(prob, mode, self.Fm, self.Sdm)
+        self.parts = list(Q)
+        self.Q = np.ascontiguousarray(np.array([Q[k] for k in self.parts]) if Q else np.zeros((0, self.nz, self.nz)))
+        self.G = self._work_matrices(h)
+        self.work_total = np.zeros(len(self.parts))   # work of each part in this mode (the kernel adds to it)
+        self.hits = np.zeros(self.ng, dtype=bool)      # the guards of the last event (set by the kernel)
+
+    def _work_matrices(self, hh: float) -> np.ndarray:
+        """G_p(hh) = int_0^hh Phi(s)^T Q_p Phi(s) ds of every part (Van Loan 1978)."""
+        n = self.nz
+        out = np.zeros_like(self.Q)
+        for k, Q in enumerate(self.Q):
+            Cm = np.zeros((2 * n, 2 * n))
+            Cm[:n, :n] = -self.A.T
+            Cm[:n, n:] = Q
+            Cm[n:, n:] = self.A
+            F = expm(Cm * hh)
+            out[k] = F[n:, n:].T @ F[:n, n:]
+        return out
+
+
+def _taylor_terms(A: np.ndarray, h: float):
+    """T_j = (h A)^j / j!, j = 0..J, shape (J+1, n, n) (None when the expansion does not suit A on h)."""
+    n = A.shape[0]
+    if not np.isfinite(h) or n == 0:
+        return None
+    Ab, (scale, _) = matrix_balance(A, permute=False, separate=True)
+    terms = [np.eye(n)]
+    T = terms[0]
+    largest = 1.0
+    for j in range(1, TAYLOR_MAX + 1):
+        T = (T @ Ab) * (h / j)
+        size = float(np.max(np.sum(np.abs(T), axis=0)))
+        if size == 0.0:           # nilpotent (stick, polynomial drives): the series is finite, exact
+            break
+        largest = max(largest, size)
+        if not np.isfinite(size) or (j >= n and largest > TAYLOR_GROWTH):
+            return None           # (a nilpotent matrix vanishes by its n-th power)
+        terms.append(T)
+        if size < TAYLOR_TOL:
+            if largest > TAYLOR_GROWTH:
+                return None
+            break
+    else:
+        return None
+    # back to the original coordinates: D T D^-1 (scale: powers of two, exact)
+    return np.ascontiguousarray(np.array([t * scale[:, None] / scale[None, :] for t in terms]))
+
+
+def power_form(prob, mode, Fm, Sdm) -> dict:
+    """{part: symmetric Q} with power_part(z) = z^T Q z in an affine, time-invariant mode (by
+    polarization); parts that vanish identically are left out."""
+    nz = Fm.shape[1]
+    nf = prob.nf
+    iu = np.triu_indices(nz)
+    Z = np.zeros((nz, iu[0].size))
+    cols = np.arange(iu[0].size)
+    Z[iu[0], cols] += 1.0
+    Z[iu[1], cols] += 1.0 * (iu[0] != iu[1])
+    D = np.eye(nz)
+
+    def P(Zc):
+        return prob.power_parts(0.0, Zc[:nf], Zc[nf:2 * nf], Zc[2 * nf:], mode, Fm @ Zc, Sdm @ Zc)
+
+    pd, pz = P(D), P(Z)
+    out = {}
+    for part in prob.WORK_PARTS:
+        Q = np.zeros((nz, nz))
+        for k, (i, j) in enumerate(zip(*iu)):
+            if i == j:
+                Q[i, i] = pd[part][i]
+            else:
+                Q[i, j] = Q[j, i] = 0.5 * (pz[part][k] - pd[part][i] - pd[part][j])
+        if np.any(Q):
+            out[part] = Q
+    return out
