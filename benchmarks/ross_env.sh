@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Create the benchmark's own virtualenv with ROSS (ross-rotordynamics) for benchmarks/rotor.py.
+#
+#   bash benchmarks/ross_env.sh            # -> benchmarks/ross-env/ (about 70 packages, ~1.2 GB)
+#   ROSS_ENV=/some/dir bash benchmarks/ross_env.sh
+#
+# ROSS is NOT a dependency of drivefem: it lives in this separate environment and the benchmark
+# runs it in a subprocess.  plotly is pinned below 7: `import ross` fails with plotly 7.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+env_dir="${ROSS_ENV:-$here/ross-env}"
+python="${PYTHON:-python3}"
+if [ -x "$env_dir/bin/python" ] && "$env_dir/bin/python" -c "import ross" 2>/dev/null; then
+    echo "ROSS environment ready: $env_dir"
+    exit 0
+fi
+"$python" -m venv "$env_dir"
+"$env_dir/bin/python" -m pip install --quiet --upgrade pip
+"$env_dir/bin/python" -m pip install --quiet "ross-rotordynamics" "plotly<7"
+"$env_dir/bin/python" -c "import ross, numpy, scipy; print('ROSS', ross.__version__, 'numpy', numpy.__version__, 'scipy', scipy.__version__)"
+echo "ROSS environment ready: $env_dir"

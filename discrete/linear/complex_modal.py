@@ -1,0 +1,680 @@
+"""Complex modes of a :class:`LinearSystem` with damping and gyroscopic terms.
+
+    M q'' + D q' + K q = 0,   D = C + Omega G   ->   (lam^2 M + lam D + K) phi = 0
+
+The quadratic eigenproblem is solved through its linearisation A z = lam B z with
+z = (phi, lam phi), A = [[0, I], [-K, -D]], B = [[I, 0], [0, M]], by ARPACK (implicitly
+restarted Arnoldi, ``scipy.sparse.linalg.eigs``) in shift-invert mode.  The state matrices are
+never formed: one application of (A - s B)^-1 B to y = (y1, y2) is
+
+    x1 = -Q(s)^-1 (M y2 + (D + s M) y1),   x2 = y1 + s x1,   Q(s) = K + s D + s^2 M,
+
+i.e. one solve with the sparse n x n matrix Q(s), factorised once (never M^-1 K, never a dense
+2n x 2n matrix except for tiny blocks, ``dense_max``).  The shift s is 0 (then Q = K, which does
+not depend on D: one factorisation serves a whole speed range) unless K is singular (a free
+rotor, an axial or torsional rigid-body motion); then s = -tau < 0, which still orders lightly
+damped eigenvalues by frequency (|lam + tau|^2 = tau^2 + omega^2 + O(damping)).
+
+The problem is split into the independent blocks of the DOF graph of M, K, C, G (a rotor's
+lateral, axial and torsional motions decouple).  Damped or gyroscopic blocks are solved first, by
+the shift-invert Arnoldi above (for tiny blocks the same operator is formed densely).  Undamped
+blocks with symmetric K and positive M (a rotor's axial and torsional motion) are symmetric
+problems K phi = w^2 M phi (lam = +-i w); only the eigenvalues below the n-th |lam| found so far
+are needed, and Sylvester's law of inertia (:class:`discrete.linalg.shifted.ShiftedSolver`) counts
+them exactly, so such a block is skipped or solved for a few modes by inverse subspace iteration
+(Lanczos if that does not converge) with the banded LU of K + tau M, rigid-body modes included.
+
+Every mode carries the backward error of the quadratic problem (Tisseur 2000)
+
+    residual = ||(lam^2 M + lam D + K) phi|| / ((|lam|^2 ||M|| + |lam| ||D|| + ||K||) ||phi||)
+
+(1-norms), and ``reliable`` = residual < tolerance.
+
+:class:`BandedLU` factorises matrices that share one sparsity pattern (a rotor at many speeds
+or frequencies): a reverse Cuthill-McKee ordering and the band map are computed once, each
+factorisation is one LAPACK ``?gbtrf`` call, and many matrices can be factorised in one call
+by stacking them along the band (as :mod:`discrete.linalg.shifted` does for real shifts).
+"""
+from __future__ import annotations
+
+import warnings as _warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from scipy.linalg import lapack
+from scipy.sparse.csgraph import connected_components, reverse_cuthill_mckee
+
+from ..errors import ModelError, SolverError
+from ..linear_system import LinearSystem
+from ..linalg.blas import single_threaded_blas
+from ..linalg.shifted import ShiftedSolver
+
+EPS = np.finfo(float).eps
+
+
+# ====================================================================== banded factorisation
+class BandedLU:
+    """LU factorisations of square matrices that share the sparsity ``pattern`` (CSR).
+
+    The ordering (reverse Cuthill-McKee when it narrows the band) and the position of every
+    stored entry in LAPACK band storage are computed here once; :meth:`factor` takes the data
+    array of a matrix on the pattern (real or complex).  Matrices whose band stays wide
+    (more than ``max(64, n / 8)``) are factorised by SuperLU instead."""
+
+    def __init__(self, pattern: sp.spmatrix):
+        P = sp.csr_matrix(pattern, copy=True)
+        P.sum_duplicates()
+        P.sort_indices()
+        n = P.shape[0]
+        self.n = n
+        self.indptr, self.indices = P.indptr, P.indices
+        rows = np.repeat(np.arange(n), np.diff(P.indptr))
+        cols = P.indices
+        natural = int(np.max(np.abs(rows - cols))) if cols.size else 0
+        perm = np.arange(n)
+        if natural > 16:            # a band this narrow is kept as it is (RCM costs more than it saves)
+            sym = sp.csr_matrix((np.ones(cols.size), (rows, cols)), shape=(n, n))
+            rcm = reverse_cuthill_mckee(sp.csr_matrix(sym + sym.T), symmetric_mode=True)
+            inv = np.empty_like(rcm)
+            inv[rcm] = np.arange(n)
+            if np.max(np.abs(inv[rows] - inv[cols])) < natural:
+                perm = rcm
+        inv = np.empty_like(perm)
+        inv[perm] = np.arange(n)
+        self.perm, self.inv = perm, inv
+        self.identity = bool(np.array_equal(perm, np.arange(n)))
+        pr, pc = inv[rows], inv[cols]
+        self.kl = int(max(np.max(pr - pc), 0)) if cols.size else 0
+        self.ku = int(max(np.max(pc - pr), 0)) if cols.size else 0
+        self.banded = max(self.kl, self.ku) <= max(64, n // 8)
+        ldab = 2 * self.kl + self.ku + 1
+        self.ldab = ldab
+        self._band_row, self._band_col = self.kl + self.ku + pr - pc, pc   # LAPACK band storage position
+        self._rows, self._cols = rows, cols
+
+    @property
+    def bandwidth(self) -> int:
+        return max(self.kl, self.ku)
+
+    def matrix(self, data: np.ndarray) -> sp.csc_matrix:
+        return sp.csc_matrix(sp.csr_matrix((data, self.indices, self.indptr), shape=(self.n, self.n)))
+
+    def to_band(self, data: np.ndarray) -> np.ndarray:
+        """The matrix with values ``data`` in transposed LAPACK band storage, shape (n, ldab):
+        a stack of q of these, shape (q, n, ldab) in C order, is the Fortran-ordered
+        (ldab, q n) array that :meth:`factor_band` hands to LAPACK without a copy."""
+        out = np.zeros((self.n, self.ldab), dtype=np.asarray(data).dtype)
+        out[self._band_col, self._band_row] = data
+        return out
+
+    def factor_band(self, bands: np.ndarray) -> "BandFactor":
+        """Factorise q matrices given as a (q, n, ldab) C-ordered stack of :meth:`to_band`
+        arrays (overwritten by the factors; banded layouts only)."""
+        if not self.banded:
+            raise ValueError("factor_band needs a banded layout")
+        q = bands.shape[0]
+        cplx = np.iscomplexobj(bands)
+        ab = bands.reshape(q * self.n, self.ldab).T          # Fortran-ordered view, no copy
+        getrf = lapack.zgbtrf if cplx else lapack.dgbtrf
+        lu, piv, info = getrf(ab, self.kl, self.ku, overwrite_ab=True)
+        if info > 0:
+            raise SolverError(f"singular matrix in a banded LU (zero pivot at row {info}): the system is "
+                              "singular at this shift or frequency")
+        return BandFactor(self, lu, piv, None, q, cplx)
+
+    def factor(self, data: np.ndarray) -> "BandFactor":
+        """Factorise the matrix with values ``data`` on the pattern."""
+        return self.factor_many(np.asarray(data)[None, :])
+
+    def factor_many(self, data: np.ndarray) -> "BandFactor":
+        """Factorise q matrices at once (``data`` of shape (q, nnz)); row j of a right-hand side
+        block is later solved with matrix j."""
+        data = np.atleast_2d(np.asarray(data))
+        q, n = data.shape[0], self.n
+        cplx = np.iscomplexobj(data)
+        if not self.banded:
+            lus = []
+            for r in range(q):
+                try:
+                    lus.append(spla.splu(self.matrix(data[r])))
+                except RuntimeError as exc:
+                    raise SolverError(f"singular matrix in a sparse LU ({exc})") from None
+            return BandFactor(self, None, None, lus, q, cplx)
+        # Fortran order: LAPACK works in place (a C-ordered band array would be transposed by a copy)
+        ab = np.zeros((self.ldab, q * n), dtype=complex if cplx else float, order="F")
+        flat = (self._band_col[None, :] + (np.arange(q) * n)[:, None]) * self.ldab + self._band_row[None, :]
+        ab.T.reshape(-1)[flat.ravel()] = data.ravel()
+        getrf = lapack.zgbtrf if cplx else lapack.dgbtrf
+        lu, piv, info = getrf(ab, self.kl, self.ku, overwrite_ab=True)
+        if info > 0:
+            raise SolverError(f"singular matrix in a banded LU (zero pivot at row {info}): the system is "
+                              "singular at this shift or frequency")
+        return BandFactor(self, lu, piv, None, q, cplx)
+
+
+@dataclass
+class BandFactor:
+    layout: BandedLU
+    lu: np.ndarray | None
+    piv: np.ndarray | None
+    splu: list | None
+    q: int
+    complex: bool
+
+    def solve_columns(self, B: np.ndarray) -> np.ndarray:
+        """Solve with the (single) factorised matrix for every column of the real (n, p) array B."""
+        lay = self.layout
+        if self.splu is not None or self.q != 1 or self.complex:
+            return np.column_stack([self.solve(B[:, j]) for j in range(B.shape[1])])
+        Bp = np.asfortranarray(B if lay.identity else B[lay.perm])
+        x, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, Bp, self.piv)
+        return x if lay.identity else x[lay.inv]
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """Solve with every factorised matrix: ``b`` of shape (q, n) (or (n,) when q = 1)."""
+        lay = self.layout
+        b = np.asarray(b)
+        single = b.ndim == 1
+        B = b[None, :] if single else b
+        out_complex = self.complex or np.iscomplexobj(B)
+        if self.splu is not None:
+            X = np.stack([self.splu[r].solve(B[r].astype(complex if out_complex else float)) for r in range(self.q)])
+            return X[0] if single else X
+        Bp = (B if lay.identity else B[:, lay.perm]).reshape(-1)
+        if out_complex and not self.complex:
+            xr, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, Bp.real.copy(), self.piv)
+            xi, _ = lapack.dgbtrs(self.lu, lay.kl, lay.ku, Bp.imag.copy(), self.piv)
+            x = xr + 1j * xi
+        else:
+            getrs = lapack.zgbtrs if self.complex else lapack.dgbtrs
+            x, info = getrs(self.lu, lay.kl, lay.ku, Bp if Bp.dtype == (complex if self.complex else float)
+                            else Bp.astype(complex if self.complex else float), self.piv)
+        X = x.reshape(self.q, lay.n)
+        if not lay.identity:
+            X = X[:, lay.inv]
+        return X[0] if single else X
+
+
+# ====================================================================== result
+def damping_ratio(eigenvalues: np.ndarray, rigid: np.ndarray) -> np.ndarray:
+    """zeta = -Re lam / |lam| of each eigenvalue (0 for a rigid-body mode; negative: it grows)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = -eigenvalues.real / np.abs(eigenvalues)
+    return np.where(rigid, 0.0, z)
+
+
+def log_decrement(eigenvalues: np.ndarray, rigid: np.ndarray) -> np.ndarray:
+    """delta = -2 pi Re lam / Im lam of each eigenvalue (inf for an overdamped one, 0 for a rigid one)."""
+    lam = eigenvalues
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(lam.imag > 0, -2 * np.pi * lam.real / np.where(lam.imag > 0, lam.imag, 1.0), np.inf)
+    return np.where(rigid, 0.0, d)
+
+
+@dataclass
+class ComplexModalResult:
+    """Complex modes, lowest |lam| first (one of each conjugate pair: Im lam >= 0).
+
+    ``shapes`` (n_dofs, n_modes) complex, each scaled so that its largest entry is 1 (real);
+    constrained DOFs are zero.  ``block`` tells which independent block of the DOF graph a
+    mode belongs to (see the module notes)."""
+
+    eigenvalues: np.ndarray
+    shapes: np.ndarray
+    residuals: np.ndarray
+    rigid: np.ndarray
+    block: np.ndarray
+    speed: float
+    n_dofs: int
+    method: str
+    tolerance: float
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def natural_frequency_rad_s(self) -> np.ndarray:
+        """|lam| (the undamped natural frequency of a viscously damped mode), rad/s."""
+        return np.where(self.rigid, 0.0, np.abs(self.eigenvalues))
+
+    @property
+    def omega_damped_rad_s(self) -> np.ndarray:
+        """Damped natural frequency Im lam, rad/s."""
+        return np.where(self.rigid, 0.0, self.eigenvalues.imag)
+
+    @property
+    def frequencies_hz(self) -> np.ndarray:
+        return self.omega_damped_rad_s / (2 * np.pi)
+
+    @property
+    def damping_ratio(self) -> np.ndarray:
+        """zeta = -Re lam / |lam| (negative: the mode grows)."""
+        return damping_ratio(self.eigenvalues, self.rigid)
+
+    @property
+    def log_decrement(self) -> np.ndarray:
+        """delta = 2 pi zeta / sqrt(1 - zeta^2) = -2 pi Re lam / Im lam (inf for an overdamped mode)."""
+        return log_decrement(self.eigenvalues, self.rigid)
+
+    @property
+    def reliable(self) -> np.ndarray:
+        return self.residuals < self.tolerance
+
+    def to_dict(self) -> dict:
+        ld = self.log_decrement
+        return {"speed_rad_s": self.speed, "eigenvalues_real": self.eigenvalues.real.tolist(),
+                "eigenvalues_imag": self.eigenvalues.imag.tolist(),
+                "omega_damped_rad_s": self.omega_damped_rad_s.tolist(),
+                "natural_frequency_rad_s": self.natural_frequency_rad_s.tolist(),
+                "frequencies_hz": self.frequencies_hz.tolist(), "damping_ratio": self.damping_ratio.tolist(),
+                "log_decrement": [None if not np.isfinite(v) else float(v) for v in ld],
+                "residuals": self.residuals.tolist(), "reliable": self.reliable.tolist(),
+                "rigid": self.rigid.tolist(), "n_dofs": self.n_dofs, "method": self.method,
+                "warnings": list(self.warnings)}
+
+
+# ====================================================================== solver
+def _norm1(A: sp.spmatrix) -> float:
+    A = sp.csr_matrix(A)
+    return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
+
+
+def _same(a: sp.csr_matrix | None, b: sp.csr_matrix | None) -> bool:
+    if a is None or b is None or a.shape != b.shape or a.nnz != b.nnz:
+        return False
+    return (a is b) or (np.array_equal(a.indptr, b.indptr) and np.array_equal(a.indices, b.indices)
+                        and np.array_equal(a.data, b.data))
+
+
+@dataclass
+class _Block:
+    dofs: np.ndarray                 # indices into the free DOFs
+    pattern: sp.csr_matrix
+    layout: BandedLU | None = None
+    cache_key: tuple | None = None   # (K, D) of the cached result
+    cache: object = None
+    k_factor: tuple | None = None    # (K, factor, shift) of the cached factorisation
+    sym_key: tuple | None = None     # (K, whether the block is a symmetric undamped problem)
+    shifted: tuple | None = None     # (K, ShiftedSolver) for inertia counts
+
+
+class QuadraticEigensolver:
+    """Complex modes of M q'' + D q' + K q = 0 for many (D, K) on one system: the block split,
+    the orderings and band maps are computed once; a factorisation of K (shift 0) is reused
+    while K does not change (e.g. a rotor on constant bearings over a speed range), and the
+    result of a block that does not change at all is reused as it is.
+
+    ``system`` gives M, the constrained DOFs and the labels; ``patterns`` lists extra matrices
+    whose sparsity the later K and D may use (e.g. every speed's bearing entries)."""
+
+    def __init__(self, system: LinearSystem, patterns=()):
+        self.system = system
+        free = system.free
+        self.free = free
+        M = system.free_block(system.M)
+        self.M = M
+        mats = [M, system.free_block(system.K), system.free_block(system.C), system.free_block(system.G)]
+        mats += [system.free_block(sp.csr_matrix(p)) for p in patterns]
+        P = sp.csr_matrix(sum(abs(sp.csr_matrix(m)) for m in mats))
+        P = sp.csr_matrix(P + P.T)
+        n_comp, labels = connected_components(P, directed=False)
+        self.blocks = []
+        for c in range(n_comp):
+            idx = np.flatnonzero(labels == c)
+            self.blocks.append(_Block(dofs=idx, pattern=sp.csr_matrix(P[idx][:, idx])))
+        # blocks in order of their first DOF (keeps results reproducible)
+        self.blocks.sort(key=lambda b: int(b.dofs[0]))
+        self._split_cache = {}
+
+    def _blocks_of(self, A: sp.spmatrix | None, name: str) -> list:
+        """The blocks of the free part of A (A None: the system's), cached while A is the same
+        object (a rotor on constant bearings passes the same K at every speed)."""
+        src = getattr(self.system, name) if A is None else A
+        hit = self._split_cache.get(name)
+        if hit is not None and hit[0] is src:
+            return hit[1]
+        Af = self.system.free_block(sp.csr_matrix(src))
+        parts = [sp.csr_matrix(Af[b.dofs][:, b.dofs]) for b in self.blocks]
+        self._split_cache[name] = (src, parts)           # holding src keeps its id unique
+        return parts
+
+    def solve(self, n_modes: int = 6, *, speed: float = 0.0, K: sp.spmatrix | None = None,
+              C: sp.spmatrix | None = None, tolerance: float = 1e-6, dense_max: int = 64) -> ComplexModalResult:
+        """Lowest ``n_modes`` complex modes at ``speed`` (D = C + speed G); ``K``, ``C``
+        replace the system's (full size; e.g. speed-dependent bearings)."""
+        sys_ = self.system
+        n_free = self.free.size
+        if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n_free:
+            raise ModelError("[analysis]", "modes", n_modes, f"an integer from 1 to {n_free} (the free DOFs)")
+        if not np.isfinite(speed):
+            raise ModelError("[analysis]", "speed", speed, "a finite speed (rad/s)")
+        Ks, Cs, Gs, Ms = (self._blocks_of(K, "K"), self._blocks_of(C, "C"), self._blocks_of(None, "G"),
+                          self._blocks_of(None, "M"))
+        lams, vecs, res, rigid, blk, methods, notes = [], [], [], [], [], [], []
+        mats = []
+        for b_no, b in enumerate(self.blocks):
+            Mb, Kb, Cb, Gb = Ms[b_no], Ks[b_no], Cs[b_no], Gs[b_no]
+            Db = sp.csr_matrix(Cb + float(speed) * Gb) if (Gb.nnz and speed) else Cb
+            if Db.nnz and not np.any(Db.data):
+                Db = sp.csr_matrix(Db.shape)
+            mats.append((Mb, Kb, Db, self._is_symmetric(b, Mb, Kb, Db)))
+        # general (damped, gyroscopic) blocks first; then the symmetric ones only for the
+        # eigenvalues below the n_modes-th found so far, counted exactly by Sylvester's inertia
+        order_blocks = sorted(range(len(self.blocks)), key=lambda i: mats[i][3])
+        for b_no in order_blocks:
+            b = self.blocks[b_no]
+            Mb, Kb, Db, symmetric = mats[b_no]
+            idx = b.dofs
+            k = min(n_modes, idx.size)
+            if symmetric and lams:
+                k = min(k, self._count_below(b, Mb, Kb, np.concatenate(lams), np.concatenate(rigid), n_modes))
+                if k == 0:
+                    continue
+            key = (Kb, Db)
+            if b.cache_key is not None and _same(b.cache_key[0], Kb) and _same(b.cache_key[1], Db) \
+                    and b.cache is not None and b.cache[0] >= k:
+                lam, phi, r, rg, meth, note = b.cache[1]
+            else:
+                lam, phi, r, rg, meth, note = self._solve_block(b, Mb, Kb, Db, k, tolerance, dense_max, symmetric)
+                b.cache_key, b.cache = key, (k, (lam, phi, r, rg, meth, note))
+            lams.append(lam)
+            full = np.zeros((n_free, lam.size), dtype=complex)
+            full[idx] = phi
+            vecs.append(full)
+            res.append(r)
+            rigid.append(rg)
+            blk.append(np.full(lam.size, b_no))
+            methods.append(meth)
+            notes += note
+        lam = np.concatenate(lams)
+        order = np.lexsort((np.concatenate(blk), np.where(np.concatenate(rigid), 0.0, np.abs(lam))))[:n_modes]
+        phi = np.hstack(vecs)[:, order]
+        result = ComplexModalResult(eigenvalues=lam[order], shapes=sys_.expand(phi), residuals=np.concatenate(res)[order],
+                                    rigid=np.concatenate(rigid)[order], block=np.concatenate(blk)[order],
+                                    speed=float(speed), n_dofs=n_free,
+                                    method="; ".join(sorted(set(methods))), tolerance=tolerance)
+        result.warnings.extend(notes)
+        if result.rigid.any():
+            result.warnings.append(f"{int(result.rigid.sum())} rigid-body mode(s) (lam = 0): reported with omega = 0")
+        for r in np.flatnonzero(~result.reliable):
+            result.warnings.append(f"mode {r + 1}: residual {result.residuals[r]:.1e} above {tolerance:g}")
+        return result
+
+    # ------------------------------------------------------------------ one block
+    @staticmethod
+    def _is_symmetric(b: _Block, M, K, D) -> bool:
+        """Undamped, non-gyroscopic, symmetric K and a positive definite-looking M (massless
+        DOFs -- a massless shaft carrying discs -- make the symmetric solver's M-inner product
+        degenerate: those blocks go to Arnoldi)."""
+        if D.nnz or M.shape[0] < 2 or M.diagonal().min() <= 0:
+            return False
+        if b.sym_key is not None and b.sym_key[0] is K:
+            return b.sym_key[1]
+        sym = K.nnz == 0 or abs(K - K.T).max() <= 1e-14 * abs(K).max()
+        b.sym_key = (K, sym)
+        return sym
+
+    @staticmethod
+    def _count_below(b: _Block, M, K, lam_found, rigid_found, n_modes) -> int:
+        """How many eigenvalues of the symmetric block lie at or below the n_modes-th |lam|
+        found so far (Sylvester's inertia of K - w^2 M); n_modes when unknown."""
+        if lam_found.size < n_modes:
+            return n_modes
+        bound = np.sort(np.where(rigid_found, 0.0, np.abs(lam_found)))[n_modes - 1]
+        try:
+            if b.shifted is None or b.shifted[0] is not K:
+                b.shifted = (K, ShiftedSolver(K, M))
+            return int(b.shifted[1].inertia(bound * bound * (1 + 1e-8) + 1e-300))
+        except (SolverError, ValueError, np.linalg.LinAlgError):
+            return n_modes
+
+    def _solve_block(self, b: _Block, M, K, D, k, tolerance, dense_max, symmetric):
+        n = M.shape[0]
+        notes = []
+        if symmetric:
+            return self._symmetric(b, M, K, k, tolerance) + (notes,)
+        if 2 * n <= dense_max or 4 * k + 5 >= n:          # ARPACK's subspace would be about the whole space
+            lam, phi, sigma = _dense(M, K, D)
+            method = "dense shift-invert of the linearisation (tiny block)"
+        else:
+            if b.layout is None:
+                b.layout = BandedLU(b.pattern)
+            lam, phi, sigma = self._arnoldi(b, M, K, D, k)
+            method = "shift-invert Arnoldi (eigs) of the linearised quadratic problem"
+        lam, phi = _one_of_each_pair(lam, phi)
+        scale = max(_scale(M, K), 1e-300)
+        # rigid-body eigenvalues are defective (q = a + b t): computed to about tau sqrt(eps) cond,
+        # measured 1e-3 tau for a free-free rotor; anything below tau / 100 is a rigid-body motion
+        level = (1e-2 * abs(sigma)) if sigma else 1e-9 * scale
+        rigid = np.abs(lam) <= level
+        lam = np.where(rigid, 0.0, lam)
+        order = np.lexsort((np.abs(lam.imag), np.abs(lam)))
+        lam, phi, rigid = lam[order][:k], phi[:, order][:, :k], rigid[order][:k]
+        phi = _normalise(phi)
+        res = _residuals(M, K, D, lam, phi)
+        return lam, phi, res, rigid, method, notes
+
+    def _symmetric(self, b: _Block, M, K, k, tolerance):
+        """K phi = w^2 M phi of an undamped block: dense for tiny blocks, else Lanczos (eigsh) in
+        shift-invert mode at -tau (tau = 1e-8 of the largest K_ii/M_ii: rigid-body modes at 0 are
+        found in the same single pass), with the block's banded LU of K + tau M."""
+        n = M.shape[0]
+        lam_max = float(np.max(np.abs(K.diagonal()) / M.diagonal()))
+        if n <= 64 or k >= n - 1:
+            w2, vec = sla.eigh(K.toarray(), M.toarray(), subset_by_index=[0, k - 1])
+            method = "dense eigh (tiny undamped block)"
+        else:
+            if b.layout is None:
+                b.layout = BandedLU(b.pattern)
+            tau = 1e-8 * lam_max
+            fac = b.layout.factor(_data_on(b.layout, sp.csr_matrix(K + tau * M)))
+            got = _subspace_iteration(K, M, k, fac) if k <= 8 else None
+            if got is not None:
+                w2, vec = got
+                method = "symmetric shift-invert subspace iteration (undamped block, Sylvester-counted)"
+            else:
+                op = spla.LinearOperator((n, n), matvec=fac.solve, dtype=float)
+                with _warnings.catch_warnings(), single_threaded_blas():
+                    _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
+                    v0 = np.random.default_rng(12345).uniform(0.5, 1.5, n)
+                    w2, vec = spla.eigsh(K, k=k, M=M, sigma=-tau, which="LM", OPinv=op, v0=v0,
+                                         ncv=min(n, max(2 * k + 1, 20)), tol=0.0)
+                method = "symmetric shift-invert Lanczos (undamped block)"
+        order = np.argsort(w2)
+        w2, vec = w2[order], vec[:, order]
+        rigid = w2 <= 1e3 * EPS * lam_max
+        lam = 1j * np.sqrt(np.clip(np.where(rigid, 0.0, w2), 0.0, None))
+        phi = _normalise(vec.astype(complex))
+        res = _residuals(M, K, sp.csr_matrix((n, n)), lam, phi)
+        return lam, phi, res, rigid, method
+
+    def _arnoldi(self, b: _Block, M, K, D, k):
+        n = M.shape[0]
+        lay = b.layout
+        fac = None
+        sigma = 0.0
+        if b.k_factor is not None and _same(b.k_factor[0], K):
+            fac, sigma = b.k_factor[1], b.k_factor[2]
+        if fac is None:
+            fac, sigma = self._factor_shift(lay, M, K, D, _data_on(lay, K))
+            if sigma == 0.0:
+                b.k_factor = (K, fac, 0.0)
+        Ds = sp.csr_matrix(D + sigma * M) if sigma else D
+        DM = sp.csr_matrix(sp.hstack([Ds, M]))           # (D + s M) y1 + M y2 in one product
+        out = np.empty(2 * n)
+
+        def op(y):
+            x1 = fac.solve(DM @ y)
+            out[:n] = -x1
+            out[n:] = y[:n] - sigma * x1 if sigma else y[:n]
+            return out.copy()
+
+        N = 2 * n
+        kk = min(2 * k + 2, N - 2)
+        ncv = min(N, max(2 * kk + 1, 24))
+        A = spla.LinearOperator((N, N), matvec=op, dtype=float)
+        start = np.random.default_rng(12345).uniform(0.5, 1.5, N)       # fixed start: reproducible results
+        with _warnings.catch_warnings(), single_threaded_blas():
+            _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
+            try:
+                mu, Z = spla.eigs(A, k=kk, which="LM", ncv=ncv, v0=start, tol=1e-13)
+            except spla.ArpackNoConvergence as exc:
+                mu, Z = exc.eigenvalues, exc.eigenvectors
+                if mu.size == 0:
+                    raise SolverError("ARPACK did not converge for the quadratic eigenproblem") from None
+        keep = np.abs(mu) > 0
+        mu, Z = mu[keep], Z[:, keep]
+        lam = sigma + 1.0 / mu
+        top, bottom = Z[:n], Z[n:]
+        # z = (phi, lam phi): take the better-scaled half
+        use_bottom = np.abs(lam) > 1.0
+        phi = np.where(use_bottom[None, :], bottom / np.where(use_bottom, lam, 1.0)[None, :], top)
+        return lam, phi, sigma
+
+    def _factor_shift(self, lay: BandedLU, M, K, D, kdata):
+        """Factor K (shift 0) if it is safely non-singular, else Q(-tau) = K - tau D + tau^2 M."""
+        scale = _scale(M, K)
+        try:
+            fac = lay.factor(kdata)
+            if lay.banded:
+                piv = np.abs(_band_diagonal(lay, fac))
+                if piv.min() > 1e3 * EPS * piv.max():
+                    return fac, 0.0
+            else:
+                piv = np.abs(fac.splu[0].U.diagonal())
+                if piv.min() > 1e3 * EPS * piv.max():
+                    return fac, 0.0
+        except SolverError:
+            pass
+        tau = 1e-6 * scale
+        Q = sp.csr_matrix(K - tau * D + tau * tau * M)
+        try:
+            return lay.factor(_data_on(lay, Q)), -tau
+        except SolverError:
+            tau *= 3.7
+            Q = sp.csr_matrix(K - tau * D + tau * tau * M)
+            return lay.factor(_data_on(lay, Q)), -tau
+
+
+def _subspace_iteration(K, M, k, fac, tol: float = 1e-14, max_iter: int = 60):
+    """Lowest k eigenpairs of K x = w2 M x by inverse subspace iteration with Rayleigh-Ritz
+    (``fac``: LU of K + tau M, tau tiny): p = k + 3 vectors; converged when the k Ritz residuals
+    ||K x - w2 M x|| / ((||K|| + |w2| ||M||) ||x||) are below ``tol``.  Fast when the k wanted
+    eigenvalues are well separated from the next (rigid-body and low rod modes); None if not
+    converged (the caller then uses Lanczos)."""
+    n = K.shape[0]
+    p = min(k + 3, n)
+    nK, nM = _norm1(K), _norm1(M)
+    X = np.random.default_rng(12345).uniform(-1.0, 1.0, (n, p))
+    for _ in range(max_iter):
+        Y = fac.solve_columns(M @ X)
+        Kr, Mr = Y.T @ (K @ Y), Y.T @ (M @ Y)
+        try:
+            w2, S = sla.eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T))
+        except np.linalg.LinAlgError:
+            return None
+        X = Y @ S
+        Xk = X[:, :k]
+        KX, MX = K @ Xk, M @ Xk
+        r = np.linalg.norm(KX - MX * w2[None, :k], axis=0)
+        scale = (nK + np.abs(w2[:k]) * nM) * np.linalg.norm(Xk, axis=0)
+        if np.all(r <= tol * np.maximum(scale, 1e-300)):
+            return w2[:k], Xk
+    return None
+
+
+def _band_diagonal(lay: BandedLU, fac: BandFactor) -> np.ndarray:
+    """Diagonal of U in a banded LU (row kl + ku of the LAPACK storage)."""
+    return fac.lu[lay.kl + lay.ku, :lay.n]
+
+
+def _data_on(lay: BandedLU, A: sp.spmatrix) -> np.ndarray:
+    """Values of A at the pattern positions of ``lay`` (A's entries must lie on the pattern)."""
+    A = sp.csr_matrix(A)
+    A.sum_duplicates()
+    n = lay.n
+    pkeys = lay._rows.astype(np.int64) * n + lay._cols
+    ar = np.repeat(np.arange(n), np.diff(A.indptr))
+    akeys = ar.astype(np.int64) * n + A.indices
+    pos = np.searchsorted(pkeys, akeys)
+    ok = (pos < pkeys.size) & (pkeys[np.minimum(pos, pkeys.size - 1)] == akeys)
+    if not np.all(ok | (A.data == 0)):
+        raise ValueError("a matrix entry lies outside the solver's sparsity pattern")
+    out = np.zeros(pkeys.size, dtype=A.dtype)
+    np.add.at(out, pos[ok], A.data[ok])
+    return out
+
+
+def _scale(M, K) -> float:
+    """sqrt(max K_ii / M_ii): the order of the largest natural frequency (rad/s)."""
+    k, m = np.abs(K.diagonal()), M.diagonal()
+    mask = m > 0
+    if not mask.any():
+        raise ModelError("", "mass", 0.0, "a model with some inertia (all masses are zero)")
+    return float(np.sqrt(np.max(k[mask] / m[mask]))) or 1.0
+
+
+def _dense(M, K, D):
+    """All eigenpairs of a tiny block from the dense shift-invert operator
+    T = (A - s B)^-1 B = [[-Q^-1 Ds, -Q^-1 M], [I - s Q^-1 Ds, -s Q^-1 M]] (Q = K + s D + s^2 M,
+    Ds = D + s M; s = 0 unless K is singular): its largest eigenvalues mu = 1/(lam - s), the low
+    modes, come out accurate relative to themselves, unlike a QZ of the unscaled linearisation
+    (whose error is eps times the largest K_ii / M_ii).  Returns (lam, phi, s)."""
+    n = M.shape[0]
+    Md, Kd, Dd = M.toarray(), K.toarray(), D.toarray()
+    scale = _scale(M, K)
+    for sigma in (0.0, -1e-6 * scale, -3.7e-6 * scale):
+        Q = Kd + sigma * Dd + sigma * sigma * Md
+        with _warnings.catch_warnings():           # a singular K (free rotor) is detected below
+            _warnings.simplefilter("ignore", sla.LinAlgWarning)
+            lu, piv = sla.lu_factor(Q, check_finite=False)
+        d = np.abs(np.diag(lu))
+        if d.min() > 1e3 * EPS * d.max():
+            break
+    Ds = Dd + sigma * Md
+    X = sla.lu_solve((lu, piv), np.hstack([Ds, Md]), check_finite=False)
+    T = np.empty((2 * n, 2 * n))
+    T[:n, :n], T[:n, n:] = -X[:, :n], -X[:, n:]
+    T[n:, :n] = np.eye(n) - sigma * X[:, :n]
+    T[n:, n:] = -sigma * X[:, n:]
+    mu, Z = sla.eig(T, check_finite=False)
+    keep = np.abs(mu) > 1e-13 * np.max(np.abs(mu))          # mu = 0: infinite lam (massless DOFs)
+    mu, Z = mu[keep], Z[:, keep]
+    lam = sigma + 1.0 / mu
+    big = np.abs(lam) > 1.0
+    phi = np.where(big[None, :], Z[n:] / np.where(big, lam, 1.0)[None, :], Z[:n])
+    return lam, phi, sigma
+
+
+def _one_of_each_pair(lam, phi):
+    """Keep Im lam >= 0 (real eigenvalues once, conjugate partners dropped)."""
+    tol = 1e-10 * np.maximum(np.abs(lam), 1e-300)
+    keep = lam.imag > tol
+    real = np.abs(lam.imag) <= tol
+    lam = np.where(real, lam.real + 0j, lam)
+    return lam[keep | real], phi[:, keep | real]
+
+
+def _normalise(phi):
+    if phi.size == 0:
+        return phi
+    k = np.argmax(np.abs(phi), axis=0)
+    piv = phi[k, np.arange(phi.shape[1])]
+    piv = np.where(piv == 0, 1.0, piv)
+    return phi / piv[None, :]
+
+
+def _residuals(M, K, D, lam, phi):
+    if lam.size == 0:
+        return np.zeros(0)
+    R = K @ phi + (D @ phi) * lam[None, :] + (M @ phi) * (lam**2)[None, :]
+    denom = (np.abs(lam) ** 2 * _norm1(M) + np.abs(lam) * _norm1(D) + _norm1(K)) * np.linalg.norm(phi, axis=0)
+    return np.linalg.norm(R, axis=0) / np.where(denom > 0, denom, 1.0)
+
+
+def complex_modal_analysis(system: LinearSystem, n_modes: int = 6, *, speed: float = 0.0,
+                           tolerance: float = 1e-6, dense_max: int = 64) -> ComplexModalResult:
+    """Lowest ``n_modes`` complex modes of ``system`` at ``speed`` (D = C + speed G); see the
+    module notes.  For repeated solves on one system use :class:`QuadraticEigensolver`."""
+    return QuadraticEigensolver(system).solve(n_modes, speed=speed, tolerance=tolerance, dense_max=dense_max)

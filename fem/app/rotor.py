@@ -1,0 +1,252 @@
+"""The commands on rotor model files (kind ``rotor``, a ``[rotor]`` table):
+
+* ``drivefem modal ROTOR [--modes N] [--json F] [--plot F] [--png DIR]``: complex modes at the speed of
+  ``[analysis]`` (damped frequencies, log decrement, whirl); ``--plot`` the orbits of the first
+  flexible mode, ``--png`` an off-screen 3D whirl picture per lateral mode;
+* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F] [--all]``: unbalance response of
+  ``[unbalance_response]`` and ``[[unbalance]]`` (Bode plot, peaks with AF and separation margins);
+* ``drivefem campbell ROTOR [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
+  ``[campbell]`` with the critical speeds.
+
+``modal`` and ``forced`` keep their meaning for the other kinds: :func:`add_parser` routes a file
+with a ``[rotor]`` table here and every other file to :mod:`fem.app.commands`.  Exit codes as for
+every command (0 done, 2 bad input, 3 modes not reliable, 4 solver failure, 5 no off-screen
+pictures)."""
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from discrete.errors import ModelError
+
+from ..output import check_output_path, contract, write_csv, write_json
+from ..output.jsonio import encode
+
+RPM = 30.0 / np.pi
+
+
+def add_parser(subparsers) -> None:
+    """Register ``drivefem campbell`` and route ``modal``/``forced`` of rotor files here."""
+    p = subparsers.add_parser("campbell", help="Campbell diagram and critical speeds of a [rotor] model file")
+    p.add_argument("model")
+    p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
+                   "[analysis] modes or 6)")
+    p.add_argument("--json", help="write the JSON diagram here (schema drivefem.campbell)")
+    p.add_argument("--png", help="write the PNG diagram here (excitation lines, critical speeds, log decrement)")
+    p.add_argument("--csv", help="write the diagram here, one row per speed")
+    p.set_defaults(func=campbell)
+    for name, rotor_command in (("modal", modal), ("forced", forced)):
+        sp = subparsers.choices[name]
+        sp.set_defaults(func=_routed(sp.get_default("func"), rotor_command))
+
+
+def _routed(other, rotor_command):
+    def run(args) -> int:
+        return rotor_command(args) if is_rotor_file(args.model) else other(args)
+
+    run.__doc__ = other.__doc__
+    return run
+
+
+def is_rotor_file(path) -> bool:
+    """Whether the file has a top-level [rotor] table (read as TOML only; validated by the command)."""
+    from ..modelfile.source import read_toml
+
+    try:
+        return "rotor" in read_toml(path)
+    except ModelError:
+        return False            # the other command reports the unreadable file
+
+
+def _check_outputs(args, **options) -> None:
+    for attr, directory in options.items():
+        value = getattr(args, attr, None)
+        if value:
+            check_output_path(value, "--" + attr, directory=directory)
+
+
+def _emit(args, command: str, study, data: dict) -> dict:
+    doc = encode(contract.payload(command, study, data))
+    if getattr(args, "json", None):
+        write_json(args.json, doc)
+    return doc
+
+
+def _load(path):
+    from ..study import Study
+
+    return Study.load(path)
+
+
+# ---------------------------------------------------------------- modal
+def modal(args) -> int:
+    _check_outputs(args, json=False, plot=False, png=True)
+    if getattr(args, "vtu", None):
+        raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
+                         "for a rotor model file")
+    study = _load(args.model)
+    res = study.modal(args.modes)
+    _emit(args, "modal", study, contract.modal_data(study, res))
+    modal_table(study, res)
+    if args.plot:
+        from ..rotor.plots import plot_mode_orbits
+
+        flexible = [r for r in range(res.n_modes) if not res.rigid[r] and res.kind[r] == "lateral"]
+        if flexible:
+            print(f"wrote {plot_mode_orbits(res, flexible[0], args.plot)}")
+        else:
+            print("warning: no lateral flexible mode: no orbit plot", file=sys.stderr)
+    if args.png:
+        from pathlib import Path
+
+        from ..render import RenderUnavailable
+        from ..rotor.render import render_whirl
+
+        out = Path(args.png)
+        out.mkdir(parents=True, exist_ok=True)
+        try:
+            for r in range(res.n_modes):
+                if res.rigid[r] or res.kind[r] != "lateral":      # axial and torsion modes: no whirl to draw
+                    continue
+                print(f"wrote {render_whirl(study.rotor, res, r, out / f'mode_{r + 1}_{res.whirl[r]}.png')}")
+        except RenderUnavailable as exc:
+            print(f"warning: no images: {exc}", file=sys.stderr)
+            return 5
+    return 0 if (res.reliable | res.rigid).all() else 3
+
+
+def modal_table(study, res, out=None) -> None:
+    out = sys.stdout if out is None else out
+    rs = study.rotor
+    print(f"{study.title}\nrotor: {rs.rotor.n_elements} Timoshenko elements, {rs.n_dofs - rs.constrained.size} free DOFs "
+          f"({rs.rotor.dofs}); speed {res.speed_rad_s:.6g} rad/s = {res.speed_rad_s * RPM:.6g} rev/min; "
+          f"solver: {res.method}", file=out)
+    print(f"{'mode':>4} {'omega_d [rad/s]':>15} {'f_d [Hz]':>12} {'zeta':>10} {'log dec':>10} {'kind':>8} "
+          f"{'whirl':>9} {'residual':>9}  note", file=out)
+    ld = res.log_decrement
+    for r in range(res.n_modes):
+        note = "rigid-body" if res.rigid[r] else ("" if res.reliable[r] else "NOT RELIABLE (see warnings)")
+        if not res.rigid[r] and res.eigenvalues[r].imag == 0:
+            note = (note + "; " if note else "") + f"overdamped (real eigenvalue {res.eigenvalues[r].real:.6g} 1/s)"
+        if res.reliable[r] or res.rigid[r]:
+            w, f = f"{res.omega_damped_rad_s[r]:15.6f}", f"{res.frequencies_hz[r]:12.6f}"
+        else:
+            w, f = f"{'--':>15}", f"{'--':>12}"
+        lds = f"{ld[r]:10.5f}" if np.isfinite(ld[r]) else f"{'overdamped':>10}"
+        print(f"{r + 1:4d} {w} {f} {res.damping_ratio[r]:10.5f} {lds} {res.kind[r]:>8} {res.whirl[r]:>9} "
+              f"{res.residuals[r]:9.1e}  {note}".rstrip(), file=out)
+    for w in res.warnings:
+        print(f"warning: {w}", file=out)
+
+
+# --------------------------------------------------------------- forced
+def forced(args) -> int:
+    _check_outputs(args, json=False, csv=False, plot=False)
+    study = _load(args.model)
+    res = study.forced()
+    _emit(args, "forced", study, contract.forced_data(study, res))
+    forced_table(study, res, all_rows=args.all)
+    if args.csv:
+        write_csv(args.csv, *response_columns(res))
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from ..rotor.plots import plot_bode
+
+        print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
+    return 0
+
+
+def forced_table(study, res, all_rows: bool = False, out=None) -> None:
+    out = sys.stdout if out is None else out
+    print(f"{study.title}\nunbalance response: {res.method}", file=out)
+    hdr = "".join(f" | {p.direction + '@' + format(p.x, 'g'):>22}" for p in res.probes)
+    print(f"{'rev/min':>10} {'rad/s':>10}{hdr}\n{'':>21}" + "".join(f" | {'amp [m]':>11}{'lag':>11}" for _ in res.probes),
+          file=out)
+    s = res.speeds_rad_s
+    idx = np.arange(s.size)
+    if idx.size > 40 and not all_rows:
+        idx = np.unique(np.linspace(0, idx.size - 1, 40).astype(int))
+    for j in idx:
+        row = "".join(f" | {p.amplitude[j]:11.4e}{p.phase_lag_deg[j]:11.2f}" for p in res.probes)
+        print(f"{s[j] * RPM:10.2f} {s[j]:10.4f}{row}", file=out)
+    if idx.size < s.size:
+        print(f"({s.size} speeds; every {s.size // idx.size}th shown, --all for all)", file=out)
+    for pk in res.peaks:
+        p = res.probes[pk.probe]
+        af = "n/a" if pk.amplification_factor is None else f"{pk.amplification_factor:.2f}"
+        sm = "" if pk.separation_margin is None else f", separation margin {pk.separation_margin:.1f} %"
+        req = "" if pk.required_margin is None else f" (required {pk.required_margin:.1f} %: " + \
+            ("ok" if pk.passes else "FAILS") + ")"
+        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.direction}@x={p.x:g}: "
+              f"{pk.amplitude:.4e} m, AF {af}{sm}{req}" + (f"; {pk.note}" if pk.note else ""), file=out)
+    for w in res.warnings:
+        print(f"warning: {w}", file=out)
+
+
+def response_columns(res) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe."""
+    head = ["speed_rpm", "speed_rad_s"] + [f"{p.direction}@x={p.x:g} {q}" for p in res.probes
+                                           for q in ("amplitude", "lag_deg", "re", "im")]
+    rows = []
+    for j, s in enumerate(res.speeds_rad_s):
+        row = [s * RPM, s]
+        for p in res.probes:
+            row += [p.amplitude[j], p.phase_lag_deg[j], p.value[j].real, p.value[j].imag]
+        rows.append(row)
+    return head, rows
+
+
+# ------------------------------------------------------------- campbell
+def campbell(args) -> int:
+    _check_outputs(args, json=False, png=False, csv=False)
+    study = _load(args.model)
+    if study.kind != "rotor":
+        raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
+                         "model)")
+    camp = study.campbell(args.modes)
+    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    campbell_table(study, camp)
+    if args.csv:
+        write_csv(args.csv, *campbell_columns(camp))
+        print(f"wrote {args.csv}")
+    if args.png:
+        from ..rotor.plots import plot_campbell
+
+        print(f"wrote {plot_campbell(camp, args.png, title=study.title)}")
+    for w in camp.warnings:
+        print(f"drivefem: warning: {w}", file=sys.stderr)
+    return 0
+
+
+def campbell_table(study, camp, out=None) -> None:
+    out = sys.stdout if out is None else out
+    s = camp.speeds_rad_s
+    print(f"{study.title}\nCampbell diagram: {camp.n_modes} tracked modes over {s.size} speeds "
+          f"[{s[0] * RPM:.6g}, {s[-1] * RPM:.6g}] rev/min; worst tracking MAC {camp.mac_min.min():.3f}, "
+          f"max residual {camp.residual_max.max():.1e}", file=out)
+    print(f"{'mode':>4} {'kind':>8} {'whirl':>9} {'f_d at start [Hz]':>18} {'f_d at end [Hz]':>16}", file=out)
+    for j in range(camp.n_modes):
+        w = max(set(row[j] for row in camp.whirl), key=[row[j] for row in camp.whirl].count)
+        print(f"{j + 1:4d} {camp.kind[j]:>8} {w:>9} {camp.omega_damped_rad_s[0, j] / (2 * np.pi):18.5f} "
+              f"{camp.omega_damped_rad_s[-1, j] / (2 * np.pi):16.5f}", file=out)
+    if not camp.critical_speeds:
+        print("no critical speed of orders " + ", ".join(f"{k:g}" for k in camp.orders) + " in the range", file=out)
+    for c in camp.critical_speeds:
+        ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
+        print(f"critical speed (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
+              f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}", file=out)
+
+
+def campbell_columns(camp) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode."""
+    head = ["speed_rpm", "speed_rad_s"] + [f"mode{j + 1} {q}" for j in range(camp.n_modes)
+                                           for q in ("omega_rad_s", "log_decrement", "whirl")]
+    rows = []
+    for i, s in enumerate(camp.speeds_rad_s):
+        row = [s * RPM, s]
+        for j in range(camp.n_modes):
+            ld = camp.log_decrement[i, j]
+            row += [camp.omega_damped_rad_s[i, j], ld if np.isfinite(ld) else "", camp.whirl[i][j]]
+        rows.append(row)
+    return head, rows

@@ -1,0 +1,154 @@
+"""A ``rotor`` model file -> :class:`fem.rotor.Rotor` and the settings of its analyses.
+
+The tables map field for field onto :mod:`fem.rotor.model` (which checks positions on the shaft,
+the bearing tables' signs and sizes); this module resolves materials (segment override over
+``[rotor.material]``, G from nu), disc geometry, units (rev/min -> rad/s, degrees -> rad) and speed
+grids, and checks the sizes against the budget before anything is assembled.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from discrete.errors import ModelError
+
+from ...rotor.model import (BEARING_COEFFICIENTS, Bearing, Coupling, Disc, Pedestal, Rotor, ShaftSegment, Support,
+                            Unbalance)
+from ...rotor.response import Probe
+from ...sections import Material
+from .. import budget
+
+RPM = math.pi / 30.0
+MAX_SPEEDS = 100_000
+"""Speeds of one Campbell diagram or unbalance response, before the DRIVEFEM_BUDGET factor."""
+
+
+def _material(default, override, where: str) -> Material:
+    vals = {}
+    for src in (default, override):
+        if src is not None:
+            for key in ("E", "G", "nu", "rho"):
+                v = getattr(src, key)
+                if v is not None:
+                    if key in ("G", "nu"):
+                        vals.pop("G", None)
+                        vals.pop("nu", None)
+                    vals[key] = v
+    for key in ("E", "rho"):
+        if key not in vals:
+            raise ModelError(where, key, None, f"{key} in [rotor.material] or in the segment's material table")
+    if "G" not in vals and "nu" not in vals:
+        raise ModelError(where, "G", None, "G or nu in [rotor.material] or in the segment's material table")
+    G = vals["G"] if "G" in vals else vals["E"] / (2.0 * (1.0 + vals["nu"]))
+    return Material(E=vals["E"], G=G, rho=vals["rho"])
+
+
+def _disc(d, rho_default: float | None, where: str) -> Disc:
+    if d.width is None:
+        return Disc(x=d.x, mass=d.mass or 0.0, Id=d.Id or 0.0, Ip=d.Ip or 0.0, name=d.name)
+    rho = d.rho if d.rho is not None else rho_default
+    if not rho:
+        raise ModelError(where, "rho", d.rho, "a density > 0 for a disc given by its geometry (or in [rotor.material])")
+    return Disc.from_geometry(d.x, d.width, d.d, d.di or 0.0, rho, d.name)
+
+
+def _bearing(b) -> Bearing:
+    speeds = b.speeds if b.speeds_rpm is None else [v * RPM for v in b.speeds_rpm]
+    coeff = {k: getattr(b, k) for k in BEARING_COEFFICIENTS}
+    return Bearing(x=b.x, speeds=speeds, interpolation=b.interpolation, k_axial=b.k_axial, c_axial=b.c_axial,
+                   pedestal=b.pedestal, name=b.name, **coeff)
+
+
+def rotor_model(doc) -> Rotor:
+    """The :class:`Rotor` a file describes (checked by the dataclasses; sizes checked up front)."""
+    r = doc.rotor
+    per_node = 6 if r.dofs == "full" else 4
+    n_el = sum(s.elements for s in r.segment)
+    budget.check_count("[[rotor.segment]]", "elements", (n_el + 1) * per_node, budget.MAX_FE_DOFS, "rotor DOFs",
+                       [s.elements for s in r.segment])
+    segments = []
+    for i, s in enumerate(r.segment, 1):
+        where = f"[[rotor.segment]] #{i}"
+        segments.append(ShaftSegment(length=s.length, elements=s.elements, d=s.d, d_end=s.d_end, di=s.di,
+                                     di_end=s.di_end, material=_material(r.material, s.material, where),
+                                     shear_coefficient=s.shear_coefficient,
+                                     added_mass_per_length=s.added_mass_per_length))
+    rho = r.material.rho if r.material is not None else None
+    discs = [_disc(d, rho, f"[[rotor.disc]] #{i}") for i, d in enumerate(r.disc, 1)]
+    return Rotor(segments=segments, discs=discs, bearings=[_bearing(b) for b in r.bearing],
+                 pedestals=[Pedestal(name=p.name, mass=p.mass, kyy=p.kyy, kzz=p.kzz, cyy=p.cyy, czz=p.czz)
+                            for p in r.pedestal],
+                 couplings=[Coupling(x=c.x, k_lateral=c.k_lateral, k_angular=c.k_angular, k_axial=c.k_axial,
+                                     k_torsion=c.k_torsion, c_lateral=c.c_lateral, c_angular=c.c_angular,
+                                     mass=c.mass, Id=c.Id, Ip=c.Ip, name=c.name) for c in r.coupling],
+                 supports=[Support(x=s.x, dofs=tuple(s.dofs)) for s in r.support], dofs=r.dofs,
+                 title=doc.title)
+
+
+def speed_grid(table, where: str) -> np.ndarray:
+    """The speeds of ``[campbell]`` or ``[unbalance_response]`` in rad/s (list or grid, rad/s or rev/min)."""
+    raw, scale = (table.speeds, 1.0) if table.speeds is not None else (table.speeds_rpm, RPM)
+    key = "speeds" if table.speeds is not None else "speeds_rpm"
+    if isinstance(raw, list):
+        s = np.asarray(raw, dtype=float)
+    else:
+        budget.check_count(where, key + ".points", raw.points, MAX_SPEEDS, "speeds", raw.points)
+        s = np.linspace(raw.start, raw.stop, raw.points)
+    budget.check_count(where, key, s.size, MAX_SPEEDS, "speeds", s.size)
+    if np.any(np.diff(s) <= 0):
+        raise ModelError(where, key, list(raw), "increasing speeds")
+    return s * scale
+
+
+def modal_speed(doc) -> float:
+    """The speed of ``drivefem modal`` (rad/s; 0 without [analysis] speed)."""
+    an = doc.analysis
+    if an is None:
+        return 0.0
+    if an.speed_rpm is not None:
+        return an.speed_rpm * RPM
+    return an.speed or 0.0
+
+
+def modes_count(doc, table=None, n_modes: int | None = None) -> int:
+    """Modes asked for: argument, then the table's modes, then [analysis] modes, then 6."""
+    for v in (n_modes, getattr(table, "modes", None), getattr(doc.analysis, "modes", None)):
+        if v is not None:
+            budget.check_count("[analysis]", "modes", v, budget.MAX_MODES, "modes", v)
+            return int(v)
+    return 6
+
+
+@dataclass
+class ResponseSpec:
+    """What ``drivefem forced`` needs: unbalances, speeds (rad/s), probes, operating range."""
+
+    unbalances: list
+    speeds: np.ndarray
+    probes: list | None
+    operating_range: tuple | None
+    find_peaks: bool
+
+
+def response_spec(doc) -> ResponseSpec:
+    t = doc.unbalance_response
+    if t is None:
+        raise ModelError("model file (rotor)", "unbalance_response", None, "a table [unbalance_response] with "
+                         "speeds = [..] or speeds_rpm = { start, stop, points } (required for drivefem forced)")
+    if not doc.unbalance:
+        raise ModelError("model file (rotor)", "unbalance", [], "at least one [[unbalance]] { x, magnitude, "
+                         "phase_deg } (required for drivefem forced)")
+    speeds = speed_grid(t, "[unbalance_response]")
+    if speeds[0] <= 0:
+        raise ModelError("[unbalance_response]", "speeds" if t.speeds is not None else "speeds_rpm",
+                         float(speeds[0] / (1.0 if t.speeds is not None else RPM)),
+                         "speeds > 0 (the unbalance force m e Omega^2 vanishes at rest)")
+    op = t.operating_range if t.operating_range_rpm is None else [v * RPM for v in t.operating_range_rpm]
+    if op is not None and not op[0] <= op[1]:
+        raise ModelError("[unbalance_response]", "operating_range", list(op), "[min, max] with min <= max")
+    probes = [Probe(p.x, p.direction) for p in t.probe] or None
+    unb = [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
+    return ResponseSpec(unbalances=unb, speeds=speeds, probes=probes,
+                        operating_range=None if op is None else (float(op[0]), float(op[1])), find_peaks=t.peaks)

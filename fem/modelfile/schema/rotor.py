@@ -1,0 +1,345 @@
+"""Tables of a rotor model file (kind ``rotor``): ``[rotor]`` with its shaft ``[[rotor.segment]]``,
+``[[rotor.disc]]``, ``[[rotor.bearing]]``, ``[[rotor.pedestal]]``, ``[[rotor.coupling]]``,
+``[[rotor.support]]``, and the analyses ``[analysis]`` (modal at a speed; the default command),
+``[campbell]`` (``drivefem campbell``), ``[unbalance_response]`` with ``[[unbalance]]``
+(``drivefem forced``).  The tables map field for field onto :mod:`fem.rotor.model`, which checks
+what involves positions along the shaft (discs, bearings on nodes) and the bearing tables' signs.
+
+Speeds are given in rad/s (``speed``, ``speeds``) or in rev/min (``speed_rpm``, ``speeds_rpm``),
+exactly one of the two; a list of speeds may also be a grid ``{ start, stop, points }``.
+"""
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import Field, model_validator
+
+from .base import Count, NonNegative, Positive, Table, rule
+
+Coefficient = float | Annotated[list[float], Field(min_length=2)]
+
+
+class SpeedGrid(Table):
+    """An evenly spaced grid of speeds (unit of the key that holds it: rad/s or rev/min)."""
+
+    start: NonNegative
+    """First speed."""
+    stop: Positive
+    """Last speed (> start)."""
+    points: Annotated[int, Field(ge=2)] = 21
+    """Number of speeds (>= 2)."""
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.stop > self.start:
+            rule("stop", self.stop, f"a speed above start = {self.start}")
+        return self
+
+
+SpeedList = Annotated[list[NonNegative], Field(min_length=2)] | SpeedGrid
+
+
+def _one_of(table, keys: tuple[str, str], required: bool) -> None:
+    given = [k for k in keys if getattr(table, k) is not None]
+    if len(given) > 1:
+        rule(keys[1], getattr(table, keys[1]), f"either {keys[0]} (rad/s) or {keys[1]} (rev/min), not both")
+    if required and not given:
+        rule(keys[0], None, f"a speed: {keys[0]} = .. (rad/s) or {keys[1]} = .. (rev/min)")
+
+
+class RotorMaterial(Table):
+    """Isotropic shaft material: in ``[rotor.material]`` the defaults of every segment, in a
+    segment's ``material`` an override of some of them."""
+
+    E: Positive | None = None
+    """Young's modulus, Pa."""
+    G: Positive | None = None
+    """Shear modulus, Pa (or give nu)."""
+    nu: Annotated[float, Field(gt=-1, lt=0.5)] | None = None
+    """Poisson's ratio in (-1, 0.5): G = E / (2 (1 + nu)) (or give G)."""
+    rho: NonNegative | None = None
+    """Density, kg/m^3 (0: a massless shaft, the Jeffcott idealisation)."""
+
+    @model_validator(mode="after")
+    def _g_or_nu(self):
+        if self.G is not None and self.nu is not None:
+            rule("nu", self.nu, "either G or nu, not both")
+        return self
+
+
+class RotorSegment(Table):
+    """``[[rotor.segment]]``: a piece of shaft, consecutive along x from x = 0, divided into equal
+    Timoshenko elements (shear, rotary inertia, gyroscopic matrices); linear taper when d_end or
+    di_end is given."""
+
+    length: Positive
+    """Length, m."""
+    elements: Count
+    """Number of equal Timoshenko elements."""
+    d: Positive
+    """Outer diameter at the start, m."""
+    d_end: Positive | None = None
+    """Outer diameter at the end, m (default: d; otherwise a linear taper)."""
+    di: NonNegative = 0.0
+    """Bore at the start, m (0: solid)."""
+    di_end: NonNegative | None = None
+    """Bore at the end, m (default: di)."""
+    material: RotorMaterial | None = None
+    """Override of [rotor.material] for this segment."""
+    shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    """Timoshenko shear coefficient kappa (default: Cowper's value for the hollow circle)."""
+    added_mass_per_length: NonNegative = 0.0
+    """Non-structural mass carried by the segment, kg/m (no stiffness)."""
+
+
+class RotorDisc(Table):
+    """``[[rotor.disc]]``: a rigid disc at a shaft node, given by its inertia (mass, Id, Ip) or by
+    its geometry (width, d, di, rho: a uniform annulus), not both."""
+
+    x: float
+    """Position along the shaft, m (a node: segment end or element boundary)."""
+    mass: NonNegative | None = None
+    """Mass, kg."""
+    Id: NonNegative | None = None
+    """Diametral moment of inertia about the disc's centre, kg m^2."""
+    Ip: NonNegative | None = None
+    """Polar moment of inertia, kg m^2 (gyroscopic moments Ip Omega)."""
+    width: Positive | None = None
+    """Geometry: axial width, m."""
+    d: Positive | None = None
+    """Geometry: outer diameter, m."""
+    di: NonNegative | None = None
+    """Geometry: bore, m (default 0)."""
+    rho: Positive | None = None
+    """Geometry: density, kg/m^3 (default: that of [rotor.material])."""
+    name: str = ""
+    """Label in outputs."""
+
+    @model_validator(mode="after")
+    def _inertia_or_geometry(self):
+        inertia = [k for k in ("mass", "Id", "Ip") if getattr(self, k) is not None]
+        geometry = [k for k in ("width", "d", "di", "rho") if getattr(self, k) is not None]
+        if inertia and geometry:
+            rule(geometry[0], getattr(self, geometry[0]), "either the inertia (mass, Id, Ip) or the geometry "
+                 "(width, d, di, rho) of a disc, not both")
+        if geometry and (self.width is None or self.d is None):
+            rule("width" if self.width is None else "d", None, "both width and d for a disc given by its geometry")
+        if not inertia and not geometry:
+            rule("mass", None, "the inertia (mass, Id, Ip) or the geometry (width, d, di, rho) of the disc")
+        return self
+
+
+class RotorBearing(Table):
+    """``[[rotor.bearing]]``: a linear bearing or seal on (v, w) of a shaft node: force on the shaft
+    f = -K d - C d', K = [[kyy, kyz], [kzy, kzz]], C = [[cyy, cyz], [czy, czz]].  Each coefficient is
+    a number or a list over ``speeds``/``speeds_rpm`` (interpolated, never extrapolated); direct
+    coefficients must be >= 0 and not all zero, cross-coupled ones may have any sign."""
+
+    x: float
+    """Position along the shaft, m (a node)."""
+    kyy: Coefficient = 0.0
+    """Direct stiffness in y, N/m (>= 0)."""
+    kyz: Coefficient = 0.0
+    """Cross-coupled stiffness, N/m (force in y per displacement in z)."""
+    kzy: Coefficient = 0.0
+    """Cross-coupled stiffness, N/m (force in z per displacement in y)."""
+    kzz: Coefficient = 0.0
+    """Direct stiffness in z, N/m (>= 0)."""
+    cyy: Coefficient = 0.0
+    """Direct damping in y, N s/m (>= 0)."""
+    cyz: Coefficient = 0.0
+    """Cross-coupled damping, N s/m."""
+    czy: Coefficient = 0.0
+    """Cross-coupled damping, N s/m."""
+    czz: Coefficient = 0.0
+    """Direct damping in z, N s/m (>= 0)."""
+    speeds: Annotated[list[NonNegative], Field(min_length=2)] | None = None
+    """Speeds of a coefficient table, rad/s, increasing."""
+    speeds_rpm: Annotated[list[NonNegative], Field(min_length=2)] | None = None
+    """Speeds of a coefficient table, rev/min, increasing (or give speeds)."""
+    interpolation: Literal["linear", "pchip"] = "linear"
+    """Interpolation of a table between its speeds (pchip: shape-preserving cubic)."""
+    k_axial: NonNegative = 0.0
+    """Thrust-bearing stiffness on u, N/m (dofs = "full" only)."""
+    c_axial: NonNegative = 0.0
+    """Thrust-bearing damping on u, N s/m (dofs = "full" only)."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=False)
+        tabulated = [k for k in ("kyy", "kyz", "kzy", "kzz", "cyy", "cyz", "czy", "czz")
+                     if isinstance(getattr(self, k), list)]
+        if tabulated and self.speeds is None and self.speeds_rpm is None:
+            rule(tabulated[0], getattr(self, tabulated[0]), "a number, or give speeds (rad/s) or speeds_rpm "
+                 "for a speed-dependent table")
+        return self
+
+
+class RotorPedestal(Table):
+    """``[[rotor.pedestal]]``: a support with its own mass between bearings and ground."""
+
+    name: Annotated[str, Field(min_length=1)]
+    """Name the bearings refer to."""
+    mass: Positive
+    """Mass, kg (moves in y and z)."""
+    kyy: Positive
+    """Stiffness to ground in y, N/m."""
+    kzz: Positive
+    """Stiffness to ground in z, N/m."""
+    cyy: NonNegative = 0.0
+    """Damping to ground in y, N s/m."""
+    czz: NonNegative = 0.0
+    """Damping to ground in z, N s/m."""
+
+
+class RotorCoupling(Table):
+    """``[[rotor.coupling]]``: a flexible coupling at a junction of two segments (the shaft is cut
+    there and joined by springs and dampers)."""
+
+    x: float
+    """Position, m: a junction of two [[rotor.segment]]s."""
+    k_lateral: Positive
+    """Lateral stiffness (v, w), N/m."""
+    k_angular: Positive
+    """Angular stiffness (theta_y, theta_z), N m/rad."""
+    k_axial: NonNegative = 0.0
+    """Axial stiffness, N/m (dofs = "full": > 0)."""
+    k_torsion: NonNegative = 0.0
+    """Torsional stiffness, N m/rad (dofs = "full": > 0)."""
+    c_lateral: NonNegative = 0.0
+    """Lateral damping, N s/m."""
+    c_angular: NonNegative = 0.0
+    """Angular damping, N m s/rad."""
+    mass: NonNegative = 0.0
+    """Own mass, kg (split equally between the two ends)."""
+    Id: NonNegative = 0.0
+    """Own diametral inertia, kg m^2."""
+    Ip: NonNegative = 0.0
+    """Own polar inertia, kg m^2."""
+    name: str = ""
+    """Label in outputs."""
+
+
+class RotorSupport(Table):
+    """``[[rotor.support]]``: a rigid constraint: the listed DOFs of the node at x are held at zero."""
+
+    x: float
+    """Position, m (a node)."""
+    dofs: Annotated[list[Literal["u", "v", "w", "theta_x", "theta_y", "theta_z"]], Field(min_length=1)] = ["v", "w"]
+    """Held DOFs (u and theta_x only with dofs = "full")."""
+
+
+class RotorTable(Table):
+    """``[rotor]``: the shaft line, its discs, bearings and seals, pedestals, couplings and supports.
+    Axes: x along the shaft (spin axis), y and z lateral; per node v, w, theta_y, theta_z (and u,
+    theta_x with dofs = "full")."""
+
+    dofs: Literal["lateral", "full"] = "lateral"
+    """DOFs per node: lateral (v, w, theta_y, theta_z) or full (also axial u and torsion theta_x)."""
+    material: RotorMaterial | None = None
+    """[rotor.material]: defaults of every segment (E, G or nu, rho)."""
+    segment: Annotated[list[RotorSegment], Field(min_length=1)]
+    """[[rotor.segment]]: shaft pieces, consecutive from x = 0."""
+    disc: Annotated[list[RotorDisc], Field(default_factory=list)]
+    """[[rotor.disc]]: rigid discs."""
+    bearing: Annotated[list[RotorBearing], Field(default_factory=list)]
+    """[[rotor.bearing]]: linear bearings and seals (8 coefficients, constant or speed tables)."""
+    pedestal: Annotated[list[RotorPedestal], Field(default_factory=list)]
+    """[[rotor.pedestal]]: bearing supports with their own mass."""
+    coupling: Annotated[list[RotorCoupling], Field(default_factory=list)]
+    """[[rotor.coupling]]: flexible couplings at segment junctions."""
+    support: Annotated[list[RotorSupport], Field(default_factory=list)]
+    """[[rotor.support]]: rigid constraints."""
+
+
+class RotorAnalysis(Table):
+    """``[analysis]`` of a rotor file: ``type`` names the default command (what the examples and
+    ``drivefem demo`` run); the other keys are the complex modal analysis at one speed
+    (``drivefem modal``)."""
+
+    type: Literal["modal", "forced", "campbell"] = "modal"
+    """Default command: modal (complex modes at a speed), forced (unbalance response), campbell."""
+    speed: NonNegative | None = None
+    """Modal: spin speed, rad/s (or speed_rpm; default 0)."""
+    speed_rpm: NonNegative | None = None
+    """Modal: spin speed, rev/min."""
+    modes: Count | None = None
+    """Modes (one per conjugate pair, lowest |lambda| first; default 6, capped at the DOFs)."""
+    tolerance: Annotated[float, Field(gt=0, lt=1)] = 1e-6
+    """Relative eigen-residual above which a mode is reported as not reliable."""
+
+    @model_validator(mode="after")
+    def _speed(self):
+        _one_of(self, ("speed", "speed_rpm"), required=False)
+        return self
+
+
+class CampbellTable(Table):
+    """``[campbell]``: the Campbell diagram of ``drivefem campbell`` (modes tracked by shape
+    correlation) and the critical speeds as roots of omega(Omega) = k Omega."""
+
+    speeds: SpeedList | None = None
+    """Speeds, rad/s: a list (increasing, >= 0) or a grid { start, stop, points }."""
+    speeds_rpm: SpeedList | None = None
+    """Speeds, rev/min (or give speeds)."""
+    modes: Count | None = None
+    """Tracked modes (default: [analysis] modes, else 6)."""
+    orders: Annotated[list[Positive], Field(min_length=1)] = [1.0]
+    """Excitation orders k of the lines omega = k Omega (1: synchronous)."""
+    critical: bool = True
+    """Find the critical speeds (roots of omega_j(Omega) = k Omega by Brent's method)."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        return self
+
+
+class RotorProbe(Table):
+    """``[[unbalance_response.probe]]``: a response output at a node."""
+
+    x: float
+    """Position, m (a node)."""
+    direction: Literal["v", "w", "major"] = "major"
+    """v, w, or the orbit's semi-major axis."""
+
+
+class UnbalanceResponseTable(Table):
+    """``[unbalance_response]``: the synchronous unbalance response of ``drivefem forced`` (amplitude
+    and phase along the shaft, peaks with API 684-style amplification factors and separation
+    margins)."""
+
+    speeds: SpeedList | None = None
+    """Speeds, rad/s (> 0): a list or a grid { start, stop, points }."""
+    speeds_rpm: SpeedList | None = None
+    """Speeds, rev/min (or give speeds)."""
+    operating_range: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rad/s (for the separation margins)."""
+    operating_range_rpm: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rev/min."""
+    probe: Annotated[list[RotorProbe], Field(default_factory=list)]
+    """[[unbalance_response.probe]]: outputs (default: the orbit at every disc and bearing)."""
+    peaks: bool = True
+    """Refine the peaks and their half-power speeds (AF, separation margins)."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        _one_of(self, ("operating_range", "operating_range_rpm"), required=False)
+        return self
+
+
+class UnbalanceTable(Table):
+    """``[[unbalance]]``: a mass unbalance m_u e at a node, at an angle from +y towards +z in the
+    rotating frame."""
+
+    x: float
+    """Position, m (a node)."""
+    magnitude: Positive
+    """m_u e, kg m."""
+    phase_deg: float = 0.0
+    """Angle from +y towards +z, degrees."""

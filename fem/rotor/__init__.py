@@ -1,0 +1,34 @@
+"""Rotordynamics: spinning Timoshenko shafts with discs, bearings and seals, pedestals and couplings.
+
+Build a :class:`Rotor` (the description), assemble it (:func:`assemble_rotor`, or let each
+analysis do it), and run the analyses:
+
+* :func:`rotor_modes` -- complex modes at a speed (damped frequencies, log decrement, whirl, orbits);
+* :func:`campbell` / :func:`critical_speeds` -- tracked modes over a speed range, critical speeds
+  as roots of omega(Omega) = k Omega;
+* :func:`undamped_critical_speeds`, :func:`critical_speed_map` -- the undamped critical speeds
+  from a linear eigenproblem, and their map against bearing stiffness;
+* :func:`unbalance_response` -- Bode/polar data, orbits, peaks with AF and separation margins;
+* :func:`static_deflection` -- deflection under gravity and point loads, bearing loads;
+* :func:`stability_threshold` -- the onset speed of instability (cross-coupled stiffness).
+
+Figures are in :mod:`fem.rotor.plots`, 3D whirl pictures in :mod:`fem.rotor.render`.
+``RotorSystem.system_at(speed)`` gives the :class:`~discrete.linear_system.LinearSystem`
+M q'' + (C + Omega G) q' + K q = f at a speed and ``RotorSystem.dof(x, field)`` the DOF at a
+position, for elements that act on the rotor.
+"""
+from .assembly import RotorSystem, assemble_rotor
+from .campbell import CampbellResult, CriticalSpeed, campbell, critical_speeds
+from .critical_map import CriticalSpeedMap, UndampedCriticalSpeeds, critical_speed_map, undamped_critical_speeds
+from .modal import RotorModes, rotor_modes
+from .model import Bearing, Coupling, Disc, Pedestal, Rotor, ShaftSegment, Support, Unbalance, rpm, to_rpm
+from .response import Probe, UnbalanceResponse, required_margin, unbalance_response
+from .stability import StabilityResult, stability_threshold
+from .static import PointLoad, StaticResult, static_deflection
+from .whirl import Orbits, mac
+
+__all__ = ["Rotor", "ShaftSegment", "Disc", "Bearing", "Pedestal", "Coupling", "Support", "Unbalance", "rpm", "to_rpm",
+           "RotorSystem", "assemble_rotor", "RotorModes", "rotor_modes", "CampbellResult", "CriticalSpeed", "campbell",
+           "critical_speeds", "UndampedCriticalSpeeds", "undamped_critical_speeds", "CriticalSpeedMap",
+           "critical_speed_map", "Probe", "UnbalanceResponse", "unbalance_response", "required_margin",
+           "PointLoad", "StaticResult", "static_deflection", "StabilityResult", "stability_threshold", "Orbits", "mac"]

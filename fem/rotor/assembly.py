@@ -1,0 +1,441 @@
+"""Assemble a :class:`~fem.rotor.model.Rotor` into sparse M, K, C, G and the speed-dependent bearings.
+
+The equations of motion at the spin speed Omega (rad/s) are
+
+    M q'' + (C(Omega) + Omega G) q' + K(Omega) q = f(t)
+
+(the :class:`~discrete.linear_system.LinearSystem` convention C + Omega G), with K and C
+depending on Omega only through tabulated bearings.  Every matrix is stored on one sparsity
+pattern (the union of all of them), so K(Omega) and C(Omega) at any speed are the constant data
+plus a sparse map of the interpolated bearing coefficients: no re-assembly per speed, and the
+solvers' orderings and band structures are computed once.
+
+DOF numbering is node-major (all DOFs of node 0, then node 1, ...; a coupling cuts the shaft
+into two nodes at the same x), pedestal DOFs (``pedestal_v``, ``pedestal_w``) come last.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.interpolate import PchipInterpolator
+
+from discrete.errors import ModelError
+from discrete.linear_system import LinearSystem
+
+from . import elements as el
+from .model import BEARING_COEFFICIENTS, Rotor
+
+
+@dataclass
+class _Table:
+    """A speed-dependent bearing: its coefficient interpolants and where it lands in the pattern."""
+
+    index: int                      # 1-based bearing number (for messages)
+    grid: np.ndarray
+    values: np.ndarray              # (8, n_grid) in BEARING_COEFFICIENTS order
+    interpolation: str
+
+    def at(self, speeds: np.ndarray) -> np.ndarray:
+        """(n_speeds, 8) coefficients; a speed outside the table is an error (no extrapolation)."""
+        s = np.atleast_1d(np.asarray(speeds, dtype=float))
+        lo, hi = self.grid[0], self.grid[-1]
+        bad = s[(s < lo * (1 - 1e-12)) | (s > hi * (1 + 1e-12))]
+        if bad.size:
+            raise ModelError(f"[[rotor.bearing]] #{self.index}", "speed", float(bad[0]),
+                             f"a speed inside the bearing table's range [{lo:g}, {hi:g}] rad/s "
+                             "(the table is not extrapolated: extend its `speeds`)")
+        s = np.clip(s, lo, hi)
+        if self.interpolation == "pchip":
+            return PchipInterpolator(self.grid, self.values, axis=1)(s).T
+        return np.stack([np.interp(s, self.grid, v) for v in self.values], axis=1)
+
+
+@dataclass
+class RotorSystem:
+    """An assembled rotor: DOF map, constant matrices and the speed-dependent bearing maps.
+
+    ``system_at(speed)`` gives the :class:`LinearSystem` at a speed; ``dof(x, field)`` and
+    ``node(x)`` look DOFs up by position (for loads, probes, and nonlinear elements acting on
+    the rotor)."""
+
+    rotor: Rotor
+    node_x: np.ndarray                       # (n_nodes,) x of every shaft node
+    node_dofs: dict                          # field -> (n_nodes,) DOF index
+    M: sp.csr_matrix
+    K0: sp.csr_matrix                        # shaft, couplings, pedestals, constant bearings
+    C0: sp.csr_matrix
+    G: sp.csr_matrix
+    dof_field: np.ndarray
+    dof_x: np.ndarray
+    dof_name: np.ndarray
+    constrained: np.ndarray
+    element_load: np.ndarray                 # (E, 4): int (rho A + m_extra) N_d dx per element (gravity)
+    element_nodes: np.ndarray                # (E, 2) node indices
+    axial_load: np.ndarray                   # (E, 2): int (rho A + m_extra) N dx of the axial rod (gravity along x)
+    lumped_mass: dict                        # DOF -> lumped translational mass on it (discs, couplings, pedestals)
+    shear_parameter: np.ndarray              # (E,) Phi = 12 E I / (kappa G A L^2) of each element
+    tables: list = field(default_factory=list)
+    _Bk: sp.csr_matrix | None = None         # pattern data <- table stiffness coefficients
+    _Bc: sp.csr_matrix | None = None
+    _pattern: sp.csr_matrix | None = None
+    _workspace: object = None                # the modal solver's reusable structures (fem.rotor.modal)
+
+    # ------------------------------------------------------------------ sizes and lookup
+    @property
+    def n_dofs(self) -> int:
+        return self.M.shape[0]
+
+    @property
+    def speed_dependent(self) -> bool:
+        return bool(self.tables)
+
+    @property
+    def fields(self) -> tuple[str, ...]:
+        return self.rotor.fields
+
+    def node(self, x: float, where: str = "") -> int:
+        """Index of the shaft node at x (the left end of a coupling when two nodes share x)."""
+        L = self.rotor.length
+        k = int(np.argmin(np.abs(self.node_x - x)))
+        if abs(self.node_x[k] - x) > 1e-9 * L:
+            raise ModelError(where, "x", x, f"a node position in [0, {L:g}] m (nearest node at x = {self.node_x[k]:.6g})")
+        return k
+
+    def dof(self, x: float, field: str, where: str = "") -> int:
+        """Global index of DOF ``field`` (v, w, theta_y, theta_z, u, theta_x) of the node at x."""
+        if field not in self.node_dofs:
+            raise ModelError(where, "dof", field, "one of " + ", ".join(map(repr, self.node_dofs)))
+        return int(self.node_dofs[field][self.node(x, where)])
+
+    @property
+    def shaft_nodes_lateral(self) -> tuple[np.ndarray, np.ndarray]:
+        """(v indices, w indices) of all shaft nodes."""
+        return self.node_dofs["v"], self.node_dofs["w"]
+
+    # ------------------------------------------------------------------ speed-dependent parts
+    def coefficients(self, speeds) -> np.ndarray:
+        """(n_speeds, 8 * n_tables) interpolated coefficients of the tabulated bearings."""
+        s = np.atleast_1d(np.asarray(speeds, dtype=float))
+        if not self.tables:
+            return np.zeros((s.size, 0))
+        return np.hstack([t.at(s) for t in self.tables])
+
+    def stiffness_data(self, speeds) -> np.ndarray:
+        """(n_speeds, nnz) data of K(speed) on the common pattern."""
+        c = self.coefficients(speeds)
+        base = self._on_pattern(self.K0)
+        return base[None, :] + (self._Bk @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
+
+    def damping_data(self, speeds) -> np.ndarray:
+        c = self.coefficients(speeds)
+        base = self._on_pattern(self.C0)
+        return base[None, :] + (self._Bc @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
+
+    @property
+    def pattern(self) -> sp.csr_matrix:
+        """The common sparsity pattern (CSR, sorted indices) of M, K, C, G at every speed."""
+        return self._pattern
+
+    def _on_pattern(self, A: sp.csr_matrix) -> np.ndarray:
+        return _data_on(self._pattern, A)
+
+    def _from_data(self, data: np.ndarray) -> sp.csr_matrix:
+        P = self._pattern
+        return sp.csr_matrix((data, P.indices, P.indptr), shape=P.shape)
+
+    def stiffness(self, speed: float = 0.0) -> sp.csr_matrix:
+        return self.K0 if not self.tables else self._from_data(self.stiffness_data(speed)[0])
+
+    def damping(self, speed: float = 0.0) -> sp.csr_matrix:
+        return self.C0 if not self.tables else self._from_data(self.damping_data(speed)[0])
+
+    def system_at(self, speed: float = 0.0) -> LinearSystem:
+        """The linear system M q'' + (C + speed G) q' + K q = f at ``speed`` (rad/s): K and C
+        carry the bearings interpolated at that speed (constant bearings: any speed)."""
+        speed = float(speed)
+        return LinearSystem(M=self.M, K=self.stiffness(speed), C=self.damping(speed), G=self.G,
+                            dof_field=self.dof_field, dof_x=self.dof_x, dof_name=self.dof_name,
+                            constrained=self.constrained, title=self.rotor.title, physics="rotor")
+
+    # ------------------------------------------------------------------ loads
+    def gravity_load(self, g=(0.0, 0.0, -9.81)) -> np.ndarray:
+        """Consistent load vector of the weight of shaft, discs, coupling halves and pedestals for
+        the acceleration of gravity ``g`` = (g_x, g_y, g_z) in m/s^2 (default: -z is down)."""
+        gx, gy, gz = (float(v) for v in g)
+        f = np.zeros(self.n_dofs)
+        n0, n1 = self.element_nodes[:, 0], self.element_nodes[:, 1]
+        fe = self.element_load
+        nd = self.node_dofs
+        # plane x-y: (v, theta_z) as is; plane x-z: S (w, theta_y)
+        for comp, gg, disp, rot, sign in ((0, gy, "v", "theta_z", 1.0), (1, gz, "w", "theta_y", -1.0)):
+            if gg:
+                np.add.at(f, nd[disp][n0], gg * fe[:, 0])
+                np.add.at(f, nd[rot][n0], sign * gg * fe[:, 1])
+                np.add.at(f, nd[disp][n1], gg * fe[:, 2])
+                np.add.at(f, nd[rot][n1], sign * gg * fe[:, 3])
+        for i, m in self.lumped_mass.items():
+            if self.dof_field[i] in ("v", "pedestal_v"):
+                f[i] += m * gy
+            elif self.dof_field[i] in ("w", "pedestal_w"):
+                f[i] += m * gz
+            elif self.dof_field[i] == "u":
+                f[i] += m * gx
+        if gx and "u" in nd:
+            np.add.at(f, nd["u"][n0], gx * self.axial_load[:, 0])
+            np.add.at(f, nd["u"][n1], gx * self.axial_load[:, 1])
+        return f
+
+    def total_mass(self) -> float:
+        """Mass of shaft (with added mass), discs, coupling halves (pedestals excluded), kg."""
+        shaft = float(self.element_load[:, 0].sum() + self.element_load[:, 2].sum())
+        r = self.rotor
+        return shaft + sum(d.mass for d in r.discs) + sum(c.mass for c in r.couplings)
+
+
+def _data_on(P: sp.csr_matrix, A: sp.spmatrix) -> np.ndarray:
+    """Values of A at the stored positions of the pattern P (A's pattern must be inside P's)."""
+    A = sp.csr_matrix(A)
+    A.sum_duplicates()
+    n = P.shape[1]
+    pr = np.repeat(np.arange(P.shape[0]), np.diff(P.indptr))
+    pkeys = pr.astype(np.int64) * n + P.indices
+    ar = np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))
+    akeys = ar.astype(np.int64) * n + A.indices
+    pos = np.searchsorted(pkeys, akeys)
+    if akeys.size and (pos.max() >= pkeys.size or np.any(pkeys[np.minimum(pos, pkeys.size - 1)] != akeys)):
+        raise ValueError("matrix pattern is not contained in the common pattern")
+    out = np.zeros(pkeys.size, dtype=A.dtype)
+    np.add.at(out, pos, A.data)
+    return out
+
+
+def _segment_arrays(rotor: Rotor):
+    """Per-element arrays: length, E, G, rho, kappa, diameters at both ends, added mass."""
+    cols = {k: [] for k in ("L", "E", "G", "rho", "kappa", "d0", "d1", "di0", "di1", "mx", "seg")}
+    for i, s in enumerate(rotor.segments):
+        n = s.elements
+        t = np.arange(n + 1) / n
+        d = s.d + (s.outer_end - s.d) * t
+        di = s.di + (s.bore_end - s.di) * t
+        mat = s.material
+        nu = mat.E / (2.0 * mat.G) - 1.0
+        if s.shear_coefficient is not None:
+            kap = np.full(n, float(s.shear_coefficient))
+        else:   # Cowper for the hollow circle with the element's mean diameter ratio
+            m = 0.5 * (di[:-1] + di[1:]) / (0.5 * (d[:-1] + d[1:]))
+            m2 = m * m
+            kap = 6 * (1 + nu) * (1 + m2) ** 2 / ((7 + 6 * nu) * (1 + m2) ** 2 + (20 + 12 * nu) * m2)
+        cols["L"].append(np.full(n, s.length / n))
+        cols["E"].append(np.full(n, mat.E))
+        cols["G"].append(np.full(n, mat.G))
+        cols["rho"].append(np.full(n, mat.rho))
+        cols["kappa"].append(kap)
+        cols["d0"].append(d[:-1])
+        cols["d1"].append(d[1:])
+        cols["di0"].append(di[:-1])
+        cols["di1"].append(di[1:])
+        cols["mx"].append(np.full(n, s.added_mass_per_length))
+        cols["seg"].append(np.full(n, i))
+    return {k: np.concatenate(v) for k, v in cols.items()}
+
+
+def assemble_rotor(rotor: Rotor) -> RotorSystem:
+    """Assemble ``rotor`` (see the module notes for the DOF numbering and the pattern)."""
+    fields = rotor.fields
+    nf = len(fields)
+    # ---------------------------------------------------------------- nodes (couplings cut the shaft)
+    coupling_x = sorted(c.x for c in rotor.couplings)
+    node_x, elem_nodes = [0.0], []
+    x0 = 0.0
+    L_total = rotor.length
+    for s in rotor.segments:
+        if x0 > 0 and any(abs(x0 - cx) <= 1e-9 * L_total for cx in coupling_x):
+            node_x.append(x0)              # the right end of the coupling: a new node at the same x
+        for k in range(1, s.elements + 1):
+            elem_nodes.append((len(node_x) - 1, len(node_x)))
+            node_x.append(x0 + s.length * k / s.elements)
+        x0 += s.length
+    node_x = np.asarray(node_x)
+    elem_nodes = np.asarray(elem_nodes)
+    n_nodes = node_x.size
+    node_dofs = {f: np.arange(n_nodes) * nf + j for j, f in enumerate(fields)}
+    n_shaft = n_nodes * nf
+    ped_names = [p.name for p in rotor.pedestals]
+    ped_dofs = {name: (n_shaft + 2 * i, n_shaft + 2 * i + 1) for i, name in enumerate(ped_names)}
+    n = n_shaft + 2 * len(ped_names)
+    dof_field = np.empty(n, dtype=object)
+    dof_x = np.empty(n)
+    dof_name = np.full(n, "", dtype=object)
+    for f, idx in node_dofs.items():
+        dof_field[idx] = f
+        dof_x[idx] = node_x
+    for p in rotor.pedestals:
+        iv, iw = ped_dofs[p.name]
+        dof_field[iv], dof_field[iw] = "pedestal_v", "pedestal_w"
+        dof_name[iv] = dof_name[iw] = p.name
+        dof_x[iv] = dof_x[iw] = next(b.x for b in rotor.bearings if b.pedestal == p.name)
+
+    def node_at(x):
+        return int(np.argmin(np.abs(node_x - x)))       # the first (left) of two coupled nodes
+
+    # ---------------------------------------------------------------- shaft elements
+    a = _segment_arrays(rotor)
+    Kp, MT, MR, P, phi = el.plane_matrices(a["L"], a["E"], a["G"], a["rho"], a["kappa"], a["d0"], a["d1"],
+                                           a["di0"], a["di1"], a["mx"])
+    Kl, Ml, Gl = el.lateral_matrices(Kp, MT, MR, P)
+    n0, n1 = elem_nodes[:, 0], elem_nodes[:, 1]
+    nd = node_dofs
+    edofs = np.stack([nd["v"][n0], nd["theta_z"][n0], nd["v"][n1], nd["theta_z"][n1],
+                      nd["w"][n0], nd["theta_y"][n0], nd["w"][n1], nd["theta_y"][n1]], axis=1)
+    rows = [np.repeat(edofs, 8, axis=1).ravel()]
+    cols = [np.tile(edofs, (1, 8)).ravel()]
+    kvals, mvals, gvals = [Kl.ravel()], [Ml.ravel()], [Gl.ravel()]
+    cvals = [np.zeros(Kl.size)]
+    # element load vectors for gravity: int (rho A + m_extra) N_d dx
+    Nd = el.shape_functions(a["L"], phi)[0]
+    A_g, I_g, Ip_g = el.section_at(a["d0"], a["d1"], a["di0"], a["di1"], el.XI)
+    line_mass = a["rho"][:, None] * A_g + a["mx"][:, None]
+    element_load = np.einsum("eq,eqi->ei", line_mass * (el.WG[None, :] * a["L"][:, None]), Nd)
+    N_lin = np.stack([1 - el.XI, el.XI], axis=-1)
+    axial_load = np.einsum("eq,qi->ei", line_mass * (el.WG[None, :] * a["L"][:, None]), N_lin)
+    if rotor.dofs == "full":
+        Ka, Ma = el.rod_matrices(a["L"], a["E"][:, None] * A_g, line_mass)
+        Kt, Mt = el.rod_matrices(a["L"], a["G"][:, None] * Ip_g, a["rho"][:, None] * Ip_g)
+        for Ke, Me, f in ((Ka, Ma, "u"), (Kt, Mt, "theta_x")):
+            e2 = np.stack([nd[f][n0], nd[f][n1]], axis=1)
+            rows.append(np.repeat(e2, 2, axis=1).ravel())
+            cols.append(np.tile(e2, (1, 2)).ravel())
+            kvals.append(Ke.ravel())
+            mvals.append(Me.ravel())
+            gvals.append(np.zeros(Ke.size))
+            cvals.append(np.zeros(Ke.size))
+
+    # ---------------------------------------------------------------- lumped items
+    extra = {"K": [], "C": [], "M": [], "G": []}          # (i, j, value)
+    lumped_mass = {}
+
+    def add(kind, i, j, v):
+        if v:
+            extra[kind].append((int(i), int(j), float(v)))
+
+    def spring(kind, i, j, k):
+        """A spring (or damper) k between DOFs i and j (j = None: to ground)."""
+        add(kind, i, i, k)
+        if j is not None:
+            add(kind, j, j, k)
+            add(kind, i, j, -k)
+            add(kind, j, i, -k)
+
+    def disc(node, mass, Id, Ip):
+        for f in ("v", "w"):
+            add("M", nd[f][node], nd[f][node], mass)
+            lumped_mass[int(nd[f][node])] = lumped_mass.get(int(nd[f][node]), 0.0) + mass
+        for f in ("theta_y", "theta_z"):
+            add("M", nd[f][node], nd[f][node], Id)
+        add("G", nd["theta_y"][node], nd["theta_z"][node], Ip)
+        add("G", nd["theta_z"][node], nd["theta_y"][node], -Ip)
+        if rotor.dofs == "full":
+            add("M", nd["u"][node], nd["u"][node], mass)
+            lumped_mass[int(nd["u"][node])] = lumped_mass.get(int(nd["u"][node]), 0.0) + mass
+            add("M", nd["theta_x"][node], nd["theta_x"][node], Ip)
+
+    for d in rotor.discs:
+        disc(node_at(d.x), d.mass, d.Id, d.Ip)
+    for c in rotor.couplings:
+        left = node_at(c.x)
+        right = left + 1
+        for node in (left, right):
+            disc(node, 0.5 * c.mass, 0.5 * c.Id, 0.5 * c.Ip)
+        for f in ("v", "w"):
+            spring("K", nd[f][left], nd[f][right], c.k_lateral)
+            spring("C", nd[f][left], nd[f][right], c.c_lateral)
+        for f in ("theta_y", "theta_z"):
+            spring("K", nd[f][left], nd[f][right], c.k_angular)
+            spring("C", nd[f][left], nd[f][right], c.c_angular)
+        if rotor.dofs == "full":
+            spring("K", nd["u"][left], nd["u"][right], c.k_axial)
+            spring("K", nd["theta_x"][left], nd["theta_x"][right], c.k_torsion)
+    for p in rotor.pedestals:
+        iv, iw = ped_dofs[p.name]
+        add("M", iv, iv, p.mass)
+        add("M", iw, iw, p.mass)
+        lumped_mass[iv] = lumped_mass.get(iv, 0.0) + p.mass
+        lumped_mass[iw] = lumped_mass.get(iw, 0.0) + p.mass
+        spring("K", iv, None, p.kyy)
+        spring("K", iw, None, p.kzz)
+        spring("C", iv, None, p.cyy)
+        spring("C", iw, None, p.czz)
+
+    # bearings: force on the shaft -K d with d = q_shaft - q_pedestal; pedestal gets +K d
+    table_entries = []                # (table number, coefficient slot, i, j, sign)
+    tables = []
+    for b_no, b in enumerate(rotor.bearings, 1):
+        node = node_at(b.x)
+        shaft = (nd["v"][node], nd["w"][node])
+        ped = ped_dofs[b.pedestal] if b.pedestal is not None else None
+        incid = []       # (dof of d_a, sign) lists per direction a
+        for a_ in range(2):
+            lst = [(shaft[a_], 1.0)]
+            if ped is not None:
+                lst.append((ped[a_], -1.0))
+            incid.append(lst)
+        coeff_slots = {"kyy": (0, 0), "kyz": (0, 1), "kzy": (1, 0), "kzz": (1, 1),
+                       "cyy": (0, 0), "cyz": (0, 1), "czy": (1, 0), "czz": (1, 1)}
+        tab = b.table()
+        if b.speed_dependent:
+            t_no = len(tables)
+            tables.append(_Table(index=b_no, grid=b.speed_grid,
+                                 values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]), interpolation=b.interpolation))
+        for slot, key in enumerate(BEARING_COEFFICIENTS):
+            r_, c_ = coeff_slots[key]
+            for (i, si) in incid[r_]:
+                for (j, sj) in incid[c_]:
+                    if b.speed_dependent:
+                        table_entries.append((t_no, slot, i, j, si * sj))
+                    else:
+                        add("K" if key[0] == "k" else "C", i, j, si * sj * tab[key][0])
+        if rotor.dofs == "full":
+            spring("K", nd["u"][node], None, b.k_axial)
+            spring("C", nd["u"][node], None, b.c_axial)
+
+    def build(kind, vals_list):
+        r = np.concatenate(rows + [np.array([e[0] for e in extra[kind]], dtype=int)])
+        c = np.concatenate(cols + [np.array([e[1] for e in extra[kind]], dtype=int)])
+        v = np.concatenate(vals_list + [np.array([e[2] for e in extra[kind]], dtype=float)])
+        A = sp.csr_matrix((v, (r, c)), shape=(n, n))
+        A.sum_duplicates()
+        return A
+
+    K0, M, C0, G = build("K", kvals), build("M", mvals), build("C", cvals), build("G", gvals)
+    # the common pattern: union of all matrices and the table entries, every position stored
+    te = np.array([(e[2], e[3]) for e in table_entries], dtype=int).reshape(-1, 2)
+    ones = [sp.csr_matrix((np.ones(X.nnz), X.indices, X.indptr), shape=(n, n)) for X in (K0, M, C0, G)]
+    ones.append(sp.csr_matrix((np.ones(te.shape[0]), (te[:, 0], te[:, 1])), shape=(n, n)))
+    pattern = sp.csr_matrix(sum(abs(o) for o in ones))
+    pattern.sum_duplicates()
+    pattern.sort_indices()
+    pattern.data[:] = 1.0
+    Bk = Bc = None
+    if tables:
+        npos = pattern.nnz
+        pr = np.repeat(np.arange(n), np.diff(pattern.indptr)).astype(np.int64) * n + pattern.indices
+        pos = np.searchsorted(pr, te[:, 0].astype(np.int64) * n + te[:, 1])
+        col = np.array([8 * e[0] + e[1] for e in table_entries])
+        sign = np.array([e[4] for e in table_entries])
+        B = sp.csr_matrix((sign, (pos, col)), shape=(npos, 8 * len(tables)))
+        stiff_cols = np.zeros(8 * len(tables), dtype=bool)
+        for t in range(len(tables)):
+            stiff_cols[8 * t: 8 * t + 4] = True
+        Bk = sp.csr_matrix(B.multiply(stiff_cols[None, :]))
+        Bc = sp.csr_matrix(B.multiply(~stiff_cols[None, :]))
+    constrained = []
+    for s in rotor.supports:
+        node = node_at(s.x)
+        constrained += [int(nd[f][node]) for f in s.dofs]
+    out = RotorSystem(rotor=rotor, node_x=node_x, node_dofs=node_dofs, M=M, K0=K0, C0=C0, G=G, dof_field=dof_field,
+                      dof_x=dof_x, dof_name=dof_name, constrained=np.unique(np.asarray(constrained, dtype=int)),
+                      element_load=element_load, element_nodes=elem_nodes, axial_load=axial_load,
+                      lumped_mass=lumped_mass, shear_parameter=phi, tables=tables, _Bk=Bk, _Bc=Bc, _pattern=pattern)
+    return out

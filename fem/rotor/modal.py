@@ -1,0 +1,195 @@
+"""Complex modes of a rotor at a speed: damped natural frequencies, damping, whirl, orbit shapes.
+
+The eigen-solution is :class:`discrete.linear.complex_modal.QuadraticEigensolver` on the
+rotor's :class:`LinearSystem` at the speed (shift-invert Arnoldi of the linearised quadratic
+problem, residuals per mode); this module adds what is rotor-specific: which motion a mode is
+(lateral, axial, torsional, rigid), its whirl direction and the orbit of every shaft node.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from discrete.errors import ModelError
+from discrete.linear.complex_modal import ComplexModalResult, QuadraticEigensolver, damping_ratio, log_decrement
+
+from .assembly import RotorSystem, assemble_rotor
+from .model import Rotor
+from .whirl import Orbits, classify
+
+
+@dataclass
+class RotorModes:
+    """Modes at one speed, lowest |lam| first (one of each conjugate pair).
+
+    Frequencies in rad/s: ``omega_damped_rad_s`` = Im lam, ``natural_frequency_rad_s`` = |lam|;
+    ``damping_ratio`` = -Re lam / |lam|; ``log_decrement`` = -2 pi Re lam / Im lam (negative:
+    unstable); ``whirl``: forward / backward / mixed / planar for lateral modes, none for axial
+    and torsional ones; ``kind``: lateral / axial / torsion / rigid.  ``orbit_*`` arrays are
+    (n_modes, n_nodes) over the shaft nodes ``node_x`` for the shape scaled to a largest entry 1."""
+
+    speed_rad_s: float
+    eigenvalues: np.ndarray
+    shapes: np.ndarray
+    node_x: np.ndarray
+    whirl: list
+    whirl_ratio: np.ndarray
+    kind: list
+    orbit_major: np.ndarray
+    orbit_minor: np.ndarray
+    orbit_angle: np.ndarray
+    orbit_forward: np.ndarray          # bool: node whirls forward
+    residuals: np.ndarray
+    rigid: np.ndarray
+    tolerance: float
+    method: str
+    n_dofs: int
+    warnings: list = field(default_factory=list)
+
+    @property
+    def omega_damped_rad_s(self) -> np.ndarray:
+        return np.where(self.rigid, 0.0, self.eigenvalues.imag)
+
+    @property
+    def natural_frequency_rad_s(self) -> np.ndarray:
+        return np.where(self.rigid, 0.0, np.abs(self.eigenvalues))
+
+    @property
+    def frequencies_hz(self) -> np.ndarray:
+        return self.omega_damped_rad_s / (2 * np.pi)
+
+    @property
+    def damping_ratio(self) -> np.ndarray:
+        return damping_ratio(self.eigenvalues, self.rigid)
+
+    @property
+    def log_decrement(self) -> np.ndarray:
+        return log_decrement(self.eigenvalues, self.rigid)
+
+    @property
+    def reliable(self) -> np.ndarray:
+        return self.residuals < self.tolerance
+
+    @property
+    def n_modes(self) -> int:
+        return int(self.eigenvalues.size)
+
+    def to_dict(self) -> dict:
+        ld = self.log_decrement
+        return {"speed_rad_s": self.speed_rad_s, "n_dofs": self.n_dofs, "n_modes": self.n_modes,
+                "omega_rad_s": self.omega_damped_rad_s.tolist(), "frequencies_hz": self.frequencies_hz.tolist(),
+                "natural_frequency_rad_s": self.natural_frequency_rad_s.tolist(),
+                "eigenvalues_real": self.eigenvalues.real.tolist(), "eigenvalues_imag": self.eigenvalues.imag.tolist(),
+                "damping_ratio": self.damping_ratio.tolist(),
+                "log_decrement": [None if not np.isfinite(v) else float(v) for v in ld],
+                "whirl": list(self.whirl), "whirl_ratio": self.whirl_ratio.tolist(), "kind": list(self.kind),
+                "node_x": self.node_x.tolist(), "orbit_major": self.orbit_major.tolist(),
+                "orbit_minor": self.orbit_minor.tolist(), "orbit_angle": self.orbit_angle.tolist(),
+                "residuals": self.residuals.tolist(), "reliable": self.reliable.tolist(),
+                "rigid_body_modes": int(self.rigid.sum()), "method": self.method, "warnings": list(self.warnings)}
+
+
+_LATERAL_FIELDS = ("v", "w", "theta_y", "theta_z", "pedestal_v", "pedestal_w")
+
+
+def _kinds(rs: RotorSystem, shapes: np.ndarray, rigid: np.ndarray) -> list:
+    """lateral / axial / torsion by where each shape is largest (the motions decouple), rigid first."""
+    a = np.abs(shapes)
+    lat = np.isin(rs.dof_field, _LATERAL_FIELDS)
+    amp_lat = a[lat].max(axis=0, initial=0.0)
+    amp_u = a[rs.dof_field == "u"].max(axis=0, initial=0.0)
+    amp_t = a[rs.dof_field == "theta_x"].max(axis=0, initial=0.0)
+    out = []
+    for r in range(shapes.shape[1]):
+        if rigid[r]:
+            out.append("rigid")
+        elif amp_lat[r] >= max(amp_u[r], amp_t[r]):
+            out.append("lateral")
+        else:
+            out.append("axial" if amp_u[r] >= amp_t[r] else "torsion")
+    return out
+
+
+def describe_modes(rs: RotorSystem, res: ComplexModalResult) -> RotorModes:
+    """Rotor view of a :class:`ComplexModalResult` of ``rs``'s system."""
+    iv, iw = rs.node_dofs["v"], rs.node_dofs["w"]
+    V, W = res.shapes[iv].T, res.shapes[iw].T                  # (n_modes, n_nodes)
+    orb = Orbits.of(V, W)
+    whirl, ratio = [], []
+    kind = _kinds(rs, res.shapes, res.rigid)
+    for r, k in enumerate(kind):
+        if k == "lateral":
+            w, q = classify(V[r], W[r])
+        else:
+            w, q = "none", 0.0
+        whirl.append(w)
+        ratio.append(q)
+    return RotorModes(speed_rad_s=res.speed, eigenvalues=res.eigenvalues, shapes=res.shapes, node_x=rs.node_x,
+                      whirl=whirl, whirl_ratio=np.asarray(ratio), kind=kind, orbit_major=orb.major,
+                      orbit_minor=orb.minor, orbit_angle=orb.angle, orbit_forward=orb.forward > orb.backward,
+                      residuals=res.residuals, rigid=res.rigid, tolerance=res.tolerance, method=res.method,
+                      n_dofs=res.n_dofs, warnings=list(res.warnings))
+
+
+class RotorEigen:
+    """Repeated complex modal solves of one assembled rotor (orderings, band maps and, on
+    constant bearings, the factorisation of K are reused from speed to speed)."""
+
+    def __init__(self, rs: RotorSystem):
+        self.rs = rs
+        self.solver = QuadraticEigensolver(rs.system_at(_any_speed(rs)), patterns=[rs.pattern])
+
+    def modes(self, speed: float, n_modes: int, tolerance: float = 1e-6) -> RotorModes:
+        rs = self.rs
+        K = rs.stiffness(speed) if rs.speed_dependent else None
+        C = rs.damping(speed) if rs.speed_dependent else None
+        res = self.solver.solve(n_modes, speed=speed, K=K, C=C, tolerance=tolerance)
+        return describe_modes(rs, res)
+
+
+def _any_speed(rs: RotorSystem) -> float:
+    """A speed at which every bearing table is defined (for building the solver's template)."""
+    if not rs.tables:
+        return 0.0
+    lo = max(t.grid[0] for t in rs.tables)
+    hi = min(t.grid[-1] for t in rs.tables)
+    if lo > hi:
+        raise ModelError("[[rotor.bearing]]", "speeds", [(t.grid[0], t.grid[-1]) for t in rs.tables],
+                         "bearing tables whose speed ranges overlap")
+    return lo
+
+
+def as_system(rotor) -> RotorSystem:
+    if isinstance(rotor, RotorSystem):
+        return rotor
+    if isinstance(rotor, Rotor):
+        return assemble_rotor(rotor)
+    raise ModelError("rotor", "rotor", type(rotor).__name__, "a fem.rotor.Rotor or an assembled RotorSystem")
+
+
+def check_speed(speed, where: str = "[analysis]", key: str = "speed", positive: bool = False) -> float:
+    try:
+        s = float(speed)
+    except (TypeError, ValueError):
+        raise ModelError(where, key, speed, "a speed in rad/s") from None
+    if not np.isfinite(s) or s < 0 or (positive and s == 0):
+        raise ModelError(where, key, speed, "a speed > 0 (rad/s)" if positive else "a speed >= 0 (rad/s)")
+    return s
+
+
+def eigen_workspace(rs: RotorSystem) -> RotorEigen:
+    """The assembled rotor's reusable modal solver (block split, orderings, band maps, the
+    factorisation of K on constant bearings, the modes of blocks that do not change with speed)."""
+    if rs._workspace is None:
+        rs._workspace = RotorEigen(rs)
+    return rs._workspace
+
+
+def rotor_modes(rotor, speed: float = 0.0, n_modes: int = 6, *, tolerance: float = 1e-6) -> RotorModes:
+    """Complex modes of ``rotor`` (a :class:`Rotor` or an assembled :class:`RotorSystem`) at
+    ``speed`` (rad/s, >= 0): the lowest ``n_modes`` by |lam| with whirl and orbits.  Repeated
+    calls on one :class:`RotorSystem` reuse its solver workspace (:func:`eigen_workspace`)."""
+    rs = as_system(rotor)
+    speed = check_speed(speed)
+    return eigen_workspace(rs).modes(speed, n_modes, tolerance)
