@@ -110,7 +110,6 @@ def power_form(prob, mode, Fm, Sdm) -> dict:
     """{part: symmetric Q} with power_part(z) = z^T Q z in an affine, time-invariant mode (by
     polarization); parts that vanish identically are left out."""
     nz = Fm.shape[1]
-    nf = prob.nf
     iu = np.triu_indices(nz)
     Z = np.zeros((nz, iu[0].size))
     cols = np.arange(iu[0].size)
@@ -119,7 +118,8 @@ def power_form(prob, mode, Fm, Sdm) -> dict:
     D = np.eye(nz)
 
     def P(Zc):
-        return prob.power_parts(0.0, Zc[:nf], Zc[nf:2 * nf], Zc[2 * nf:], mode, Fm @ Zc, Sdm @ Zc)
+        q, v, _, e = prob.split(Zc)
+        return prob.power_parts(0.0, q, v, e, mode, Fm @ Zc, Sdm @ Zc)
 
     pd, pz = P(D), P(Z)
     out = {}

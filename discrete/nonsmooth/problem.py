@@ -5,11 +5,15 @@ Equations (free DOFs q, constrained/driver DOFs x_c(t) prescribed):
     M(t) q'' + (C + C_r) q' + K q = -B e(t) + F_ext e(t) + sum_i g_i F_i + sum_k g_k lam_k
 
 with ``M(t) = M + t Mdot`` (variable mass, seed 004 (1): Newton form with the reactive
-damping ``C_r = epsilon Mdot``), ``e(t) = [1, t, sin w1 t, cos w1 t, ...]`` the exogenous basis
-(``e' = E e``) in which driver motions and external forces are exact linear combinations, and
-``lam_k`` the constraint forces of sticking frictions / persistent contacts.  In every mode in
-which all active laws are affine and M is constant, the augmented state ``z = [q, v, e]``
-obeys ``z' = A z`` exactly, so a piece is propagated by ``expm(A tau)``.
+damping ``C_r = epsilon Mdot``), ``e(t) = [1, t, sin w1 t, cos w1 t, ..., u_1, u_2, ...]`` the
+exogenous state (``e' = E e``) in which driver motions and external forces are exact linear
+combinations (``u_k``: the sub-state of the k-th programme law, :mod:`.sources`), and ``lam_k``
+the constraint forces of sticking frictions / persistent contacts.  Elements may carry internal
+states ``w`` of their own (the motor torque of (5.54): ``w' `` affine in (s, s', w, e)).  In
+every mode in which all active laws are affine, time-invariant and M is constant, the augmented
+state ``z = [q, v, w, e]`` obeys ``z' = A z`` exactly, so a piece is propagated by
+``expm(A tau)``.  The mode of the problem is the tuple of the element modes followed by the
+piece index of every programme law (a knot is a time event that resets its sub-state).
 """
 from __future__ import annotations
 
@@ -19,6 +23,8 @@ import numpy as np
 
 from ..errors import ModelError
 from ..linear_system import LinearSystem
+from ..motion.piecewise import PiecewiseLaw
+from .sources import LawSource
 
 
 @dataclass
@@ -30,6 +36,20 @@ class MotionLaw:
     amplitude: float = 0.0
     omega: float = 0.0
     phase: float = 0.0
+
+
+@dataclass
+class ProgrammeMotion(MotionLaw):
+    """Prescribed motion ``offset + velocity t + amplitude sin(omega t + phase) + law(t)`` with
+    ``law`` a :class:`~discrete.motion.piecewise.PiecewiseLaw` in time (a cam law, a piecewise
+    polynomial, a spline table): integrated exactly, its knots are time events (:mod:`.sources`)."""
+
+    law: PiecewiseLaw | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.law, PiecewiseLaw):
+            raise ModelError("programme motion", "law", type(self.law).__name__,
+                             "a discrete.motion.PiecewiseLaw in time (knots in s)")
 
 
 @dataclass
@@ -68,17 +88,36 @@ class Problem:
             el.g = np.asarray(el.g, dtype=float)
             if el.g.shape != (n,):
                 raise ModelError(f"element {el.name!r}", "g", el.g.shape, f"a vector of {n} DOF coefficients")
-        # exogenous basis
+        self.names = [str(system.dof_name[i]) if system.dof_name[i] else system.label(i) for i in range(n)]
+        for j, d in drivers.items():
+            if not isinstance(d, MotionLaw):
+                raise ModelError(f"driver {self.names[j]!r}", "law", type(d).__name__,
+                                 "a MotionLaw or a ProgrammeMotion")
+        # exogenous basis: [1, t, sin w1 t, cos w1 t, ...] then the sub-states of the programme laws
         oms = sorted({float(d.omega) for d in drivers.values() if d.amplitude != 0 and d.omega != 0}
                      | {float(F.omega) for F in self.forces if F.amplitude != 0 and F.omega != 0})
         self.omegas = oms
-        ne = 2 + 2 * len(oms)
+        nb = 2 + 2 * len(oms)
+        self.nb = nb
+        self.sources, self.source_slices, src_dof = [], [], []
+        off = nb
+        for j in sorted(drivers):
+            if isinstance(drivers[j], ProgrammeMotion):
+                src = LawSource(drivers[j].law, self.names[j])
+                self.sources.append(src)
+                self.source_slices.append(slice(off, off + src.size))
+                src_dof.append(j)
+                off += src.size
+        ne = off
         self.ne = ne
         E = np.zeros((ne, ne))
         E[1, 0] = 1.0
         for k, w in enumerate(oms):
             E[2 + 2 * k, 3 + 2 * k] = w
             E[3 + 2 * k, 2 + 2 * k] = -w
+        for src, sl in zip(self.sources, self.source_slices):
+            E[sl, sl] = src.A
+            E[sl, 0] = src.clock
         self.E = E
 
         def row(law):
@@ -97,6 +136,8 @@ class Problem:
         P = np.zeros((n, ne))          # full-DOF positions contributed by drivers: x_c = P[c] e
         for j, law in drivers.items():
             P[j] = row(law)
+        for src, sl, j in zip(self.sources, self.source_slices, src_dof):
+            P[j, sl] += src.r
         self.P = P
         M, K, C = _dense(system.M), _dense(system.K), _dense(system.C)
         self.Mfull, self.Kfull, self.Cfull = M, K, C
@@ -117,17 +158,35 @@ class Problem:
         for F in self.forces:
             Fx += np.outer(np.asarray(F.g, float)[f], row(F))
         self.Fx = Fx
-        self.time_invariant = not np.any(self.Mdot)
+        self.time_invariant = not np.any(self.Mdot)      # constant inertia
         # element gradients split into free part and the exogenous part (drivers)
         self.gf = [el.g[f] for el in self.elements]
         self.ge = [el.g @ P for el in self.elements]
         self.gve = [ge @ E for ge in self.ge]
         self.gae = [ge @ E @ E for ge in self.ge]
-        self.affine = all(el.affine for el in self.elements)
+        self.n_el = len(self.elements)
+        # elements whose law depends on t explicitly (a modulated spring): their pieces are numeric
+        self.time_dependent = any(el.time_dependent for el in self.elements)
+        self.affine = all(el.affine for el in self.elements) and not self.time_dependent
+        # internal states of the elements (the motor torque): z = [q, v, w, e]
+        self.state_slices, k = [], 0
+        for el in self.elements:
+            self.state_slices.append(slice(k, k + el.n_states))
+            k += el.n_states
+        self.nw = k
+        self.stateful = [i for i, el in enumerate(self.elements) if el.n_states]
+        self.w0 = np.concatenate([np.asarray(el.initial_states(), float).reshape(el.n_states)
+                                  for el in self.elements]) if k else np.zeros(0)
+        self.nz = 2 * self.nf + self.nw + ne
+        extra = []
+        for el in self.elements:
+            for part in (el.work, el.time_work if el.time_dependent else None):
+                if part and part != "conservative" and part not in self.WORK_PARTS and part not in extra:
+                    extra.append(part)
+        self.WORK_PARTS = Problem.WORK_PARTS + tuple(extra)
         x0 = np.zeros(n) if x0 is None else np.asarray(x0, float)
         v0 = np.zeros(n) if v0 is None else np.asarray(v0, float)
         self.q0, self.v0 = x0[f].copy(), v0[f].copy()
-        self.names = [str(system.dof_name[i]) if system.dof_name[i] else system.label(i) for i in range(n)]
         # a time scale: highest natural frequency of the linear part (for step limits)
         try:
             lam = np.linalg.eigvals(np.linalg.solve(self.M0, self.K + sum(
@@ -135,18 +194,53 @@ class Problem:
             self.omega_max = float(np.sqrt(np.max(np.abs(lam)))) if lam.size else 0.0
         except np.linalg.LinAlgError:
             self.omega_max = 0.0
-        self.omega_max = max([self.omega_max] + [abs(w) for w in oms])
+        self.omega_max = max([self.omega_max] + [abs(w) for w in oms]
+                             + [el.frequency() for el in self.elements]
+                             + [src.max_frequency() for src in self.sources])
 
     # ------------------------------------------------------------------ basics
     def basis(self, t) -> np.ndarray:
+        """The exogenous state e at the absolute time t (programme laws: right-continuous at knots)."""
+        e = np.zeros(self.ne)
+        e[0], e[1] = 1.0, t
+        for k, w in enumerate(self.omegas):
+            e[2 + 2 * k], e[3 + 2 * k] = np.sin(w * t), np.cos(w * t)
+        for src, sl in zip(self.sources, self.source_slices):
+            e[sl] = src.at_time(t)[1]
+        return e
+
+    def exogenous_after(self, e, t0, t1) -> np.ndarray:
+        """e at t1 from e at t0 with no knot in between (closed forms; the base basis at t1)."""
+        out = self.basis_base(t1)
+        for src, sl in zip(self.sources, self.source_slices):
+            out[sl] = src.advance(e[sl], t1 - t0)
+        return out
+
+    def basis_base(self, t) -> np.ndarray:
+        """e at t with the programme sub-states left zero (filled by the caller)."""
         e = np.zeros(self.ne)
         e[0], e[1] = 1.0, t
         for k, w in enumerate(self.omegas):
             e[2 + 2 * k], e[3 + 2 * k] = np.sin(w * t), np.cos(w * t)
         return e
 
+    def initial_state(self, t0: float = 0.0):
+        """(z0 = [q0, v0, w0, e(t0)], the piece of every programme law at t0)."""
+        e = self.basis_base(t0)
+        pieces = []
+        for src, sl in zip(self.sources, self.source_slices):
+            i, u = src.at_time(t0)
+            e[sl] = u
+            pieces.append(i)
+        return np.concatenate([self.q0, self.v0, self.w0, e]), tuple(pieces)
+
+    def split(self, Z):
+        """(q, v, w, e) parts of state vectors (rows of Z along its first axis)."""
+        nf, nw = self.nf, self.nw
+        return Z[:nf], Z[nf:2 * nf], Z[2 * nf:2 * nf + nw], Z[2 * nf + nw:]
+
     def mass(self, t) -> np.ndarray:
-        return self.M0 + t * self.Mdot
+        return self.M0 if self.time_invariant else self.M0 + t * self.Mdot
 
     def full_state(self, q, v, e):
         """Full-DOF positions and velocities (drivers included) for column arrays q, v, e."""
@@ -165,29 +259,60 @@ class Problem:
     def mode_affine(self, mode) -> bool:
         return self.time_invariant and self.affine
 
+    def actor_name(self, i: int) -> str:
+        """Name of the element (i < n_el) or of the programme law (i >= n_el) of a guard tag."""
+        return self.elements[i].name if i < self.n_el else self.sources[i - self.n_el].name
+
+    def speed_scale(self) -> float:
+        """The largest driver speed (constant, harmonic and programme parts)."""
+        out = max((abs(d.velocity) + abs(d.amplitude * d.omega) for d in self.drivers.values()), default=0.0)
+        return max([out] + [src.speed_scale() for src in self.sources])
+
+    # --------------------------------------------------------- programme laws
+    def knot(self, k: int, z: np.ndarray, piece: int):
+        """The reset of programme law k at the end of ``piece``: (new z, next piece, jump of the
+        driver's position, jump of its velocity)."""
+        src = self.sources[k]
+        nxt = src.next_piece(piece)
+        z = z.copy()
+        off = 2 * self.nf + self.nw
+        sl = self.source_slices[k]
+        z[off + sl.start:off + sl.stop] = src.resets[nxt]
+        return z, nxt, float(src.jump_x[nxt]), float(src.jump_v[nxt])
+
     # ------------------------------------------------------------ evaluation
-    def evaluate(self, t, q, v, e, mode):
+    def evaluate(self, t, q, v, e, mode, w=None):
         """Right-hand side, element forces, constraint forces and guards for column arrays.
 
-        q, v: (nf, m); e: (ne, m).  Returns dict with ``a`` (nf, m), ``F`` (n_el, m) the element
-        forces along s (constraint forces included for constrained elements), ``lam``
-        (rows of :meth:`constraint_rows`), ``s``, ``sd`` (n_el, m), ``guards`` (ng, m) and
-        ``tags`` (list of (element index, tag)), each guard admissible when >= 0.
+        q, v: (nf, m); e: (ne, m); w: (nw, m) internal states (None: zeros).  Returns dict with
+        ``a`` (nf, m), ``wd`` (nw, m) the internal state rates, ``F`` (n_el, m) the element
+        forces along s (constraint forces included for constrained elements), ``lam`` (rows of
+        :meth:`constraint_rows`), ``s``, ``sd`` (n_el, m), ``guards`` (ng, m) and ``tags``
+        (list of (element index, tag); index n_el + k: the knot of programme law k), each guard
+        admissible when >= 0.  ``t`` may be an array (one time per column) when M is constant.
         """
         q, v, e = np.atleast_2d(q), np.atleast_2d(v), np.atleast_2d(e)
         m = q.shape[1]
+        w = np.zeros((self.nw, m)) if w is None else np.asarray(w).reshape(self.nw, m)
         e0 = e[0]
-        nel = len(self.elements)
+        nel = self.n_el
         s = np.zeros((nel, m))
         sd = np.zeros((nel, m))
         F = np.zeros((nel, m))
         rhs = -self.K @ q - (self.C + self.Cr) @ v - self.B @ e + self.Fx @ e
         for i, el in enumerate(self.elements):
             s[i], sd[i] = self.coords(i, q, v, e)
-            f = el.force(mode[i], s[i], sd[i], e0, t)
+            if el.n_states:
+                f = el.state_force(mode[i], s[i], sd[i], w[self.state_slices[i]], e0, t)
+            else:
+                f = el.force(mode[i], s[i], sd[i], e0, t)
             if f is not None:
                 F[i] = f
             rhs += np.outer(self.gf[i], F[i])
+        wd = np.zeros((self.nw, m))
+        for i in self.stateful:
+            sl = self.state_slices[i]
+            wd[sl] = self.elements[i].state_rates(mode[i], s[i], sd[i], w[sl], e0, t)
         Mt = self.mass(t)
         rows = self.constraint_rows(mode)
         if rows:
@@ -211,23 +336,27 @@ class Problem:
             for value, tag in el.guards(mode[i], s[i], sd[i], F[i], e0, t):
                 guards.append(value)
                 tags.append((i, tag))
+        for k, (src, sl) in enumerate(zip(self.sources, self.source_slices)):
+            piece = mode[nel + k]
+            if src.has_end(piece):            # the knot: sigma reaches the piece's length
+                guards.append(src.lengths[piece] * e0 - e[sl.start])
+                tags.append((nel + k, "knot"))
         g = np.array(guards) if guards else np.zeros((0, m))
-        return {"a": a, "F": F, "lam": lam, "s": s, "sd": sd, "guards": g, "tags": tags, "rows": rows}
+        return {"a": a, "wd": wd, "F": F, "lam": lam, "s": s, "sd": sd, "guards": g, "tags": tags, "rows": rows}
 
     def linear_maps(self, mode):
         """For an affine, time-invariant mode: z' = A z, guards = Cg z, F = Fm z, s = Sm z, sd = Sdm z."""
-        nz = 2 * self.nf + self.ne
-        I = np.eye(nz)
-        q, v, e = I[:self.nf], I[self.nf:2 * self.nf], I[2 * self.nf:]
-        out = self.evaluate(0.0, q, v, e, mode)
-        A = np.vstack([v, out["a"], self.E @ e])
+        I = np.eye(self.nz)
+        q, v, w, e = self.split(I)
+        out = self.evaluate(0.0, q, v, e, mode, w)
+        A = np.vstack([v, out["a"], out["wd"], self.E @ e])
         return A, out["guards"], out["tags"], out["F"], out["s"], out["sd"]
 
     # ---------------------------------------------------------------- energy
     def energy(self, t, q, v, e, mode):
         """Mechanical energy: kinetic of free DOFs + elastic of all springs + element potentials."""
         x, _ = self.full_state(q, v, e)
-        return self.linear_energy(t, x, v) + self.potential_energy(q, e, mode)
+        return self.linear_energy(t, x, v) + self.potential_energy(q, e, mode, t)
 
     def linear_energy(self, t, x, v):
         """Kinetic energy of the free DOFs and elastic energy of the springs, for full-DOF
@@ -236,13 +365,14 @@ class Problem:
             x = x - self._Krigid @ (self._Krigid.T @ x)
         return 0.5 * np.sum(v * (self.mass(t) @ v), axis=0) + 0.5 * np.sum(x * (self.Kfull @ x), axis=0)
 
-    def potential_energy(self, q, e, mode):
-        """Potential energy of the conservative elements in ``mode``."""
+    def potential_energy(self, q, e, mode, t=0.0):
+        """Potential energy of the conservative elements in ``mode`` at time t (a time-dependent
+        potential, the modulated spring's, needs t; t may be an array, one time per column)."""
         E = 0.0
         for i, el in enumerate(self.elements):
             if el.has_potential:
                 s = self.gf[i] @ q + self.ge[i] @ e
-                E = E + el.potential(s, mode[i])
+                E = E + el.potential_at(s, mode[i], t)
         return E
 
     WORK_PARTS = ("drivers", "dampers", "variable_mass", "external", "friction", "elements", "contacts")
@@ -258,7 +388,10 @@ class Problem:
         * ``external``: [[force]] tables;
         * ``friction``: friction forces (slip and stick) on the free DOFs;
         * ``elements``: elements without a potential (the smooth arctan gap), counted as work;
-        * ``contacts``: constraint forces of persistent contacts (zero for fixed stops).
+        * ``contacts``: constraint forces of persistent contacts (zero for fixed stops);
+        * an element's own category (``motor``: the motor torque's power) and ``modulation``: the
+          explicit time derivative of a time-dependent potential, dV/dt at fixed s (the work of
+          the pulsation of a modulated spring) -- present only with such elements.
         """
         x, xd = self.full_state(q, v, e)
         c, f = self.c, self.f
@@ -279,6 +412,9 @@ class Problem:
                 out["drivers"] = out["drivers"] - Fc * (self.gve[i] @ e)
             if Fn is not None:       # the rest of the force: work of its category on the free DOFs
                 out[el.work] = out[el.work] + Fn * (self.gf[i] @ v)
+            if el.time_dependent:    # dV/dt at fixed s
+                s_i = self.gf[i] @ q + self.ge[i] @ e
+                out[el.time_work] = out[el.time_work] + el.explicit_power(s_i, mode[i], t)
         return out
 
     def power(self, t, q, v, e, mode, F, sd):

@@ -21,6 +21,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..errors import SolverError
+from ..linalg.blas import single_threaded_blas
 from .periodic import detect_period, detect_period_smooth
 from .piece import AffinePiece
 from .problem import Problem
@@ -63,9 +64,7 @@ class EventDrivenSolver:
         velocity); the release guard of the next piece then decides from the force's trend."""
         p = self.p
         v0 = np.asarray(getattr(p, "v0", np.zeros(0)), dtype=float)
-        vref = max(float(np.max(np.abs(v0))) if v0.size else 0.0,
-                   max((abs(d.velocity) + abs(d.amplitude * d.omega) for d in p.drivers.values()), default=0.0),
-                   1e-300)
+        vref = max(float(np.max(np.abs(v0))) if v0.size else 0.0, p.speed_scale(), 1e-300)
         tol = {}
         for i, el in enumerate(p.elements):
             if el.unilateral:
@@ -76,12 +75,13 @@ class EventDrivenSolver:
 
     # ------------------------------------------------------------ helpers
     def _split(self, z):
-        nf = self.p.nf
-        return z[:nf], z[nf:2 * nf], z[2 * nf:]
+        """(q, v, e) of a state vector (the internal states w: :meth:`Problem.split`)."""
+        q, v, _, e = self.p.split(z)
+        return q, v, e
 
     def _eval(self, t, z, mode):
-        q, v, e = self._split(z)
-        return self.p.evaluate(t, q[:, None], v[:, None], e[:, None], mode)
+        q, v, w, e = self.p.split(z)
+        return self.p.evaluate(t, q[:, None], v[:, None], e[:, None], mode, w[:, None])
 
     def _forces(self, t, z, mode):
         """(element forces along s, constraint rows) at one state: the cached linear map of an
@@ -122,7 +122,7 @@ class EventDrivenSolver:
             d = np.zeros(z.size)
             part = slice(nf, 2 * nf) if velocity else slice(0, nf)
             r[part] = p.gf[i]
-            r[2 * nf:] = p.gve[i] if velocity else p.ge[i]
+            r[2 * nf + p.nw:] = p.gve[i] if velocity else p.ge[i]
             d[part] = Mig / float(p.gf[i] @ Mig)
             rd = (r, d)
             if p.time_invariant:
@@ -154,7 +154,9 @@ class EventDrivenSolver:
             limits.pop(wi, None)
         raise SolverError(f"could not find a consistent contact/stick mode at t = {t!r}")
 
-    def initial_mode(self, t, z):
+    def initial_mode(self, t, z, pieces=()):
+        """The element modes of the state z (then made consistent), followed by ``pieces``, the
+        piece of every programme law."""
         p = self.p
         q, v, e = self._split(z)
         mode = []
@@ -162,7 +164,7 @@ class EventDrivenSolver:
         for i, el in enumerate(p.elements):
             s, sd = p.gf[i] @ q + p.ge[i] @ e, p.gf[i] @ v + p.gve[i] @ e
             mode.append(el.initial_mode(s, sd, scale_v))
-        return tuple(self._consistent_mode(t, z, mode))
+        return tuple(self._consistent_mode(t, z, mode + list(pieces)))
 
     # --------------------------------------------------------- exact pieces
     def _piece(self, mode, span) -> AffinePiece:
@@ -204,32 +206,38 @@ class EventDrivenSolver:
     # -------------------------------------------------------- numeric pieces
     def _propagate_numeric(self, t, z, mode, t_end, rec, acc):
         p = self.p
-        nf = p.nf
+        nf, nw = p.nf, p.nw
+        nqv = 2 * nf + nw                 # integrated: q, v, w (then the work of each part)
+        t_start, e_start = t, z[nqv:].copy()
         cache = {}
+
+        def exo(tt):
+            """The exogenous state at tt (closed forms from the piece's start: no knot inside)."""
+            return p.exogenous_after(e_start, t_start, tt)
 
         def ev(tt, y):
             key = (tt, y.tobytes())
             out = cache.get("k") == key and cache.get("v")
             if not out:
-                q, v = y[:nf, None], y[nf:2 * nf, None]
-                e = p.basis(tt)[:, None]
-                out = p.evaluate(tt, q, v, e, mode)
+                q, v, w = y[:nf, None], y[nf:2 * nf, None], y[2 * nf:nqv, None]
+                e = exo(tt)[:, None]
+                out = p.evaluate(tt, q, v, e, mode, w)
                 cache["k"], cache["v"] = key, out
             return out
 
         def fun(tt, y):
             out = ev(tt, y)
             q, v = y[:nf, None], y[nf:2 * nf, None]
-            e = p.basis(tt)[:, None]
+            e = exo(tt)[:, None]
             if self.o.energy:
                 pp = p.power_parts(tt, q, v, e, mode, out["F"], out["sd"])
                 P = [pp[k][0] for k in p.WORK_PARTS]
             else:
                 P = [0.0] * len(p.WORK_PARTS)
-            return np.concatenate([y[nf:2 * nf], out["a"][:, 0], P])
+            return np.concatenate([y[nf:2 * nf], out["a"][:, 0], out["wd"][:, 0], P])
 
         npart = len(p.WORK_PARTS)
-        start = ev(t, np.concatenate([z[:2 * nf], np.zeros(npart)]))
+        start = ev(t, np.concatenate([z[:nqv], np.zeros(npart)]))
         tags = start["tags"]
         # A slip that starts from rest with the slip force just at the limit (static = kinetic)
         # leaves w = 0 tangentially: rounding can make w dip below zero in the first step and
@@ -249,13 +257,13 @@ class EventDrivenSolver:
                 return ev(tt, y)["guards"][j, 0] + offset[j]
             g.terminal, g.direction = True, -1
             events.append(g)
-        y0 = np.concatenate([z[:2 * nf], np.zeros(npart)])
+        y0 = np.concatenate([z[:nqv], np.zeros(npart)])
         W0, Wp0 = acc["W"], dict(acc["Wp"])
 
         def settle(y):
-            for k_, w_ in zip(p.WORK_PARTS, y[2 * nf:]):
+            for k_, w_ in zip(p.WORK_PARTS, y[nqv:]):
                 acc["Wp"][k_] = Wp0.get(k_, 0.0) + w_
-            acc["W"] = W0 + float(np.sum(y[2 * nf:]))
+            acc["W"] = W0 + float(np.sum(y[nqv:]))
         # absolute tolerances in the units of q and v: the state, or -- for a piece starting at
         # rest -- the drivers' displacement and velocity amplitudes and friction surface speeds
         # (a state at rest once gave atol ~ 1e-310, an overflowing error norm and a failed piece:
@@ -266,10 +274,14 @@ class EventDrivenSolver:
         q_scale = max(float(np.max(np.abs(z[:nf]))) if nf else 0.0, drive_q) or 1.0
         v_scale = max(float(np.max(np.abs(z[nf:2 * nf]))) if nf else 0.0, drive_v, v_scale) or 1.0
         scale = max(q_scale, v_scale)
-        e_scale = abs(float(p.energy(t, z[:nf, None], z[nf:2 * nf, None], z[2 * nf:, None], mode)[0])) \
-            + scale ** 2 * (np.max(np.abs(p.K)) + np.max(np.abs(p.mass(t)))) + 1e-300
+        e_scale = abs(float(np.asarray(p.energy(t, z[:nf, None], z[nf:2 * nf, None], z[nqv:, None], mode))
+                            .reshape(-1)[0])) + scale ** 2 * (np.max(np.abs(p.K)) + np.max(np.abs(p.mass(t)))) + 1e-300
+        w_scale = np.ones(nw)
+        for i in p.stateful:
+            sl = p.state_slices[i]
+            w_scale[sl] = max(p.elements[i].state_scale(), float(np.max(np.abs(z[2 * nf:nqv][sl]))))
         atol = np.concatenate([np.full(nf, self.o.rtol * q_scale * 1e-2), np.full(nf, self.o.rtol * v_scale * 1e-2),
-                               np.full(npart, self.o.rtol * 1e-2 * e_scale)])
+                               self.o.rtol * 1e-2 * w_scale, np.full(npart, self.o.rtol * 1e-2 * e_scale)])
         max_step = np.inf
         if p.omega_max > 0:
             max_step = 2 * np.pi / (self.o.steps_per_period * p.omega_max)
@@ -285,7 +297,7 @@ class EventDrivenSolver:
         for k in range(1, sol.t.size):
             yk = sol.y[:, k]
             settle(yk)
-            zk = np.concatenate([yk[:2 * nf], p.basis(sol.t[k])])
+            zk = np.concatenate([yk[:nqv], exo(sol.t[k])])
             if sol.status == 1 and k == sol.t.size - 1:
                 break
             rec(sol.t[k], zk, mode, acc["W"])
@@ -296,18 +308,45 @@ class EventDrivenSolver:
             trig = [tags[h[0]] for h in hits if h[1] <= te + tol]
             y = [h[2] for h in hits if h[1] == te][0]
             settle(y)
-            return te, np.concatenate([y[:2 * nf], p.basis(te)]), trig
+            return te, np.concatenate([y[:nqv], exo(te)]), trig
         yk = sol.y[:, -1]
-        return sol.t[-1], np.concatenate([yk[:2 * nf], p.basis(sol.t[-1])]), []
+        return sol.t[-1], np.concatenate([yk[:nqv], exo(sol.t[-1])]), []
 
     # ----------------------------------------------------------- events
     def _apply(self, t, z, mode, trig, impact_ref):
-        """Apply the element rules to the triggered guards; returns new z, mode, events, jump work."""
-        elements = self.p.elements
-        ctx = EventContext(self, t, z, list(mode), impact_ref)
-        for (i, tag) in (trig if len(trig) == 1 else sorted(set(trig))):
-            ctx.i = i
-            elements[i].on_event(tag, ctx)
+        """Apply the knots of the programme laws, then the element rules, to the triggered guards;
+        returns new z, mode, events, and the energy jumps {part: work}."""
+        p = self.p
+        elements = p.elements
+        nel = p.n_el
+        trig = trig if len(trig) == 1 else sorted(set(trig))
+        knots = [i - nel for i, _ in trig if i >= nel]
+        modes = list(mode)
+        jumps, knot_events = {}, []
+        if knots:
+            E0 = self._energy(t, z, modes)
+            moved = False
+            for k in knots:
+                z, modes[nel + k], dx, dv = p.knot(k, z, modes[nel + k])
+                moved = moved or dx != 0.0 or dv != 0.0
+                ev = Event(t, "knot", p.sources[k].name, {})
+                knot_events.append(ev)
+                self._event_states.append((ev, z))
+            if moved:
+                # a jump of a driver's position or velocity (a constant-velocity cam's hard impact):
+                # the element modes follow the new state
+                q, v, e = self._split(z)
+                scale_v = max(1e-300, np.max(np.abs(v)) if v.size else 0.0)
+                for i, el in enumerate(elements):
+                    s_, sd_ = p.gf[i] @ q + p.ge[i] @ e, p.gf[i] @ v + p.gve[i] @ e
+                    modes[i] = el.initial_mode(s_, sd_, scale_v)
+            # the reset moves the drivers by round-off (or by a jump of the law): their work
+            jumps["drivers"] = self._energy(t, z, modes) - E0
+        ctx = EventContext(self, t, z, modes, impact_ref)
+        for (i, tag) in trig:
+            if i < nel:
+                ctx.i = i
+                elements[i].on_event(tag, ctx)
         z, records, before = ctx.z, ctx.records, ctx.modes
         mode = self._consistent_mode(t, z, before, ctx.limits)
         if mode != before:
@@ -315,17 +354,31 @@ class EventDrivenSolver:
             for i, el in enumerate(elements):
                 if mode[i] != before[i] and i not in recorded:
                     records.append([i, el.release_event()])
-        events = []
+        events = knot_events
         for i, kind in records:
             if kind == "stop":
                 kind = "stick" if mode[i] == 0 else "reversal"
             ev = Event(t, kind, elements[i].name, {})
             events.append(ev)
             self._event_states.append((ev, z))
-        return z, tuple(mode), events, ctx.jump
+        if ctx.jump:
+            jumps["impacts"] = ctx.jump
+        return z, tuple(mode), events, jumps
+
+    def _energy(self, t, z, modes) -> float:
+        q, v, e = self._split(z)
+        return float(np.asarray(self.p.energy(t, q[:, None], v[:, None], e[:, None], tuple(modes))).reshape(-1)[0])
 
     # ------------------------------------------------------------- driver
     def run(self, t_end: float, t0: float = 0.0) -> SimulationResult:
+        """Simulate on [t0, t_end].  The linear algebra here is on tiny matrices (the pieces'
+        expansions, projections, the energy): BLAS threads only add synchronisation, and their
+        spinning costs several times the work on a busy machine (seed 000, 801 events: 21 ms of
+        CPU single-threaded against 50-110 ms with two OpenBLAS threads)."""
+        with single_threaded_blas():
+            return self._run(t_end, t0)
+
+    def _run(self, t_end: float, t0: float = 0.0) -> SimulationResult:
         p, o = self.p, self.o
         if not t_end > t0:
             raise SolverError(f"t_end = {t_end!r} must exceed the start time {t0!r}")
@@ -333,8 +386,8 @@ class EventDrivenSolver:
         self._event_states = []
         for pc in self._pieces.values():
             pc.work_total[:] = 0.0
-        z = np.concatenate([p.q0, p.v0, p.basis(t0)])
-        mode = self.initial_mode(t0, z)
+        z, pieces = p.initial_state(t0)
+        mode = self.initial_mode(t0, z, pieces)
         rec = _Recorder(t0, z, mode, o.progress)
 
         acc = {"W": 0.0, "Wp": {}, "steps": 0, "rejections": 0}
@@ -359,15 +412,15 @@ class EventDrivenSolver:
                 zero_len = zero_len + 1 if te == t else 0
                 if zero_len > o.max_zero_length:
                     stopped, reason = True, (f"no progress at t = {te!r}: {zero_len} consecutive events "
-                                             f"({', '.join(f'{p.elements[i].name}:{g}' for i, g in trig)}) "
+                                             f"({', '.join(f'{p.actor_name(i)}:{g}' for i, g in trig)}) "
                                              "without time advancing (chattering or accumulation)")
                     t, z = te, ze
                     break
                 rec(te, ze, mode, acc["W"])
-                z, mode, evs, jump = self._apply(te, ze, mode, trig, impact_ref)
-                acc["W"] += jump
-                if jump:
-                    acc["Wp"]["impacts"] = acc["Wp"].get("impacts", 0.0) + jump
+                z, mode, evs, jumps = self._apply(te, ze, mode, trig, impact_ref)
+                for part, jump in jumps.items():
+                    acc["W"] += jump
+                    acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
                 t = te
                 rec(t, z, mode, acc["W"])
                 events.extend(evs)
@@ -392,20 +445,24 @@ class EventDrivenSolver:
             reason = f"interrupted (Ctrl-C) at t = {T[-1]!r}: the results up to there are kept"
         self._fill_event_states()
         Z = np.ascontiguousarray(Z.T)
-        q, v, e = Z[:p.nf], Z[p.nf:2 * p.nf], Z[2 * p.nf:]
+        q, v, w, e = p.split(Z)
         x, xd = p.full_state(q, v, e)
         E = p.linear_energy(0.0, x, v) if p.time_invariant else np.zeros(T.size)
         Fel = np.zeros((len(p.elements), T.size))
         for m, md in enumerate(modes):         # vectorised per mode (time enters only through M(t))
-            ks = np.flatnonzero(which == m) if len(modes) > 1 else slice(None)
+            ks = np.flatnonzero(which == m) if len(modes) > 1 or not p.time_invariant else slice(None)
             if p.time_invariant:
-                E[ks] += p.potential_energy(q[:, ks], e[:, ks], md)
+                # time-dependent elements (a modulated spring) take the samples' times
+                tk = T[ks] if p.time_dependent else 0.0
+                E[ks] += p.potential_energy(q[:, ks], e[:, ks], md, tk)
                 pc = self._pieces.get(md)
-                Fel[:, ks] = pc.Fm @ Z[:, ks] if pc is not None else p.evaluate(0.0, q[:, ks], v[:, ks], e[:, ks], md)["F"]
+                Fel[:, ks] = pc.Fm @ Z[:, ks] if pc is not None else \
+                    p.evaluate(tk, q[:, ks], v[:, ks], e[:, ks], md, w[:, ks])["F"]
             else:
                 for k in ks:
                     E[k] = p.energy(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)[0]
-                    Fel[:, k] = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)["F"][:, 0]
+                    Fel[:, k] = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md,
+                                           w[:, k:k + 1])["F"][:, 0]
         if self.o.energy:
             resid = (E - E[0]) - W
             scale = max(np.max(np.abs(E)), np.max(np.abs(W)), 1e-300)
@@ -429,41 +486,38 @@ class EventDrivenSolver:
         return res
 
 
+_KERNEL = []
+
+
 def _kernel():
     """The compiled piece kernel, imported on first use (numba's import and the cached compiled code
     cost ~0.5 s: commands that never integrate do not pay it)."""
-    from . import kernel
-    return kernel
+    if not _KERNEL:
+        from . import kernel
+        _KERNEL.append(kernel)
+    return _KERNEL[0]
 
 
 class _Recorder:
-    """The recorded instants, states, modes and accumulated work: single samples (state vectors,
-    never changed in place by the solver; gathered in one array when a block follows) and blocks
-    of samples (copied from the kernel's buffers)."""
+    """The recorded instants, states, modes and accumulated work: single samples (one-row views of
+    state vectors, which the solver never changes in place) and blocks of samples (copied from the
+    kernel's buffers), gathered into arrays once at the end."""
 
     def __init__(self, t0, z0, mode, progress):
-        self.ts, self.Ws, self.zs, self.ms = [], [], [], []
-        self.singles = [(t0, z0.copy(), mode, 0.0)]
+        self.ts, self.Ws, self.zs, self.ms = [t0], [0.0], [z0.copy()[None, :]], [(mode, 1)]
         self.last_t = t0
         self.progress = progress
 
     def __call__(self, t, z, mode, W) -> None:
-        self.singles.append((t, z, mode, W))
+        self.ts.append(t)
+        self.zs.append(z[None, :])
+        self.ms.append((mode, 1))
+        self.Ws.append(W)
         self.last_t = t
         if self.progress is not None:
             self.progress(t)
 
-    def _flush(self) -> None:
-        rows = self.singles
-        if rows:
-            self.ts.extend([r[0] for r in rows])
-            self.zs.append(np.array([r[1] for r in rows]))
-            self.ms.extend([(r[2], 1) for r in rows])
-            self.Ws.extend([r[3] for r in rows])
-            self.singles = []
-
     def extend(self, times, Z, mode, W) -> None:
-        self._flush()
         self.zs.append(Z.copy())
         self.ms.append((mode, len(times)))
         self.Ws.extend(W.tolist())
@@ -475,7 +529,6 @@ class _Recorder:
     def arrays(self):
         """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W),
         consistent even when a Ctrl-C struck halfway through a record."""
-        self._flush()
         Z = np.concatenate(self.zs)
         ids: dict = {}
         counts = np.array([k for _, k in self.ms])

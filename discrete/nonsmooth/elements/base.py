@@ -11,7 +11,13 @@ force ``F`` along s (``g F`` on the DOFs).  It owns its law in every form a solv
 * the energy balance: the potential energy (conservative elements) or the work category of its
   power ("friction", "contacts", "elements");
 * the smooth (regularised) law of the regularised integrator and of harmonic balance (AFT);
-* the Moreau-Jean time stepper: the impulse of one step given the local free velocity.
+* the Moreau-Jean time stepper: the impulse of one step given the local free velocity;
+* optionally (hooks with defaults): internal states of its own (``n_states``, the motor torque of
+  (5.54): part of the exact state z = [q, v, w, e], with an affine rate law
+  :meth:`Element.state_rates` and the force :meth:`Element.state_force`), and an explicit time
+  dependence (``time_dependent``: a modulated spring; its pieces are integrated numerically, its
+  potential :meth:`Element.potential_at` depends on t and the explicit derivative dV/dt at fixed s,
+  :meth:`Element.explicit_power`, is the work of the category ``time_work``).
 
 The solvers loop over the elements and call these methods; none of them looks at the element's
 type.  A smooth nonlinear spring is an element with a smooth force only (``event_driven`` False
@@ -104,6 +110,44 @@ class Element:
         return 0.0
 
     soft_start_tags = ()          # guards that, starting on their boundary, fire only once clearly crossed
+
+    # ------------------------------------------------------------ optional: internal states
+    n_states = 0
+    """Internal states of the element in the exact state z = [q, v, w, e] (the motor torque)."""
+
+    def initial_states(self) -> list:
+        """Values of the internal states at the start."""
+        return [0.0] * self.n_states
+
+    def state_force(self, mode: int, s, sd, w, e0, t):
+        """Force along s of an element with internal states ``w`` ((n_states, m) array)."""
+        return self.force(mode, s, sd, e0, t)
+
+    def state_rates(self, mode: int, s, sd, w, e0, t):
+        """w' ((n_states, m)); affine in (s, s', w, e0) for an affine element."""
+        return np.zeros((self.n_states, np.size(s)))
+
+    def state_scale(self) -> float:
+        """A magnitude of the internal states (absolute tolerances of numeric pieces)."""
+        return 1.0
+
+    # ------------------------------------------------------------ optional: explicit time dependence
+    time_dependent = False
+    """The law depends on t explicitly (not through the exogenous state): numeric pieces."""
+    time_work = "modulation"
+    """Work category of the explicit time derivative of the potential."""
+
+    def potential_at(self, s, mode, t):
+        """Potential energy at time t (t may be an array, one value per column)."""
+        return self.potential(s, mode)
+
+    def explicit_power(self, s, mode, t):
+        """dV/dt at fixed s of a time-dependent potential (the work the pulsation does)."""
+        return 0.0 * s
+
+    def frequency(self) -> float:
+        """The highest frequency of the element's own time dependence (step limits), rad/s."""
+        return 0.0
 
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps: float):

@@ -63,6 +63,9 @@ def hybrid_model(doc) -> HybridModel:
     links = [(f"[[spring]] #{i}", t, t.k, t.c) for i, t in enumerate(doc.spring, 1)]
     links += [(f"[[damper]] #{i}", t, 0.0, t.c) for i, t in enumerate(doc.damper, 1)]
     for w, t, k, c in links:
+        if w.startswith("[[spring]]") and t.modulation is not None:
+            raise ModelError(w, "modulation", t.modulation.model_dump(), "no modulation in hybrid models (a "
+                             "pulsating spring is available in lumped models)")
         if w.startswith("[[spring]]") and t.psi:
             raise ModelError(w, "psi", t.psi, "0 in hybrid models (give segment psi or [damping])")
         if k == 0 and c == 0:
@@ -79,6 +82,9 @@ def hybrid_model(doc) -> HybridModel:
             raise ModelError(w, "inertia", t.inertia, "0 in hybrid models (a driver prescribes an FE DOF)")
         if t.x is None:
             raise ModelError(w, "x", None, "the driven FE node x = .. (with dof = ..) (required key missing)")
+        if t.programme is not None:
+            raise ModelError(w, "programme", t.programme.law, "no programme law in hybrid models (programme "
+                             "motion is available in lumped models)")
         model.drivers.append(DriverSpec(ref=NodeRef(x=t.x, dof=t.dof), law=MotionLaw(
             offset=t.offset, velocity=t.velocity, amplitude=t.amplitude, omega=t.omega, phase=t.phase)))
 

@@ -1,14 +1,19 @@
 """Lumped model files -> :class:`discrete.lumped.LumpedModel` (linear part) and the nonsmooth
 :class:`discrete.nonsmooth.Problem` (elements, drivers, forces, variable mass) of the time and
-steady-state analyses."""
+steady-state analyses.  Time-domain-only data -- a spring's ``modulation`` (an element of
+pulsating stiffness), a driver's ``programme`` (a cam law), ``[[motor]]`` -- enter the Problem only;
+the linear part keeps the constant stiffness k and the driver's constant/harmonic law."""
 from __future__ import annotations
 
 import numpy as np
 
 from discrete.errors import ModelError
 from discrete.lumped import GROUND, Body, Driver, Gear, Link, LumpedModel
+from discrete.motion import cam_laws
+from discrete.motion.piecewise import PiecewiseLaw
 from discrete.nonsmooth import ExternalForce, MotionLaw
-from discrete.nonsmooth.problem import ProblemSpec
+from discrete.nonsmooth.elements import ModulatedSpring
+from discrete.nonsmooth.problem import ProblemSpec, ProgrammeMotion
 
 from .damping import time_domain_damping
 from .elements import element_tables
@@ -58,8 +63,60 @@ def forcing_omegas(doc) -> list[float]:
     return [d.omega for d in doc.driver if d.amplitude] + [f.omega for f in doc.force if f.amplitude]
 
 
+def programme_law(prog, where: str, t_end: float | None = None) -> PiecewiseLaw:
+    """The time law x(t) of a driver's ``programme`` table: a dwell-rise-dwell-return cycle of a
+    standard cam law or a C2 spline table, in the cam angle phi = cam_speed (t - start) (a table's
+    first angle at t = start).  A non-periodic table must cover the run [0, t_end]."""
+    if prog.law == "table" and not prog.periodic:
+        if prog.start > 0:
+            raise ModelError(f"{where} programme", "start", prog.start, "a time <= 0 for a non-periodic table "
+                             "(the law is defined from its first angle on; the run starts at t = 0)")
+        end = prog.start + (prog.phi[-1] - prog.phi[0]) / prog.cam_speed
+        if t_end is not None and end < t_end:
+            raise ModelError(f"{where} programme", "phi", [prog.phi[0], prog.phi[-1]],
+                             f"a non-periodic table covering the run: its end t = {end:.6g} s is before t_end = "
+                             f"{t_end!r} (extend the table or set periodic = true)")
+    try:
+        if prog.law == "table":
+            law = PiecewiseLaw.tabulated(prog.phi, prog.x, periodic=prog.periodic, name="table")
+        else:
+            law = cam_laws.dwell_rise_dwell_return(prog.stroke, prog.rise, prog.top_dwell, prog.return_,
+                                                   law=prog.law, return_law=prog.return_law, cycle=prog.cycle)
+        return law.in_time(prog.cam_speed, prog.start)
+    except ModelError as exc:
+        raise ModelError(f"{where} programme", exc.key, exc.value, exc.allowed) from None
+
+
+def _time_domain_only(doc) -> list[tuple[str, str, object]]:
+    """(where, key, value) of the tables only the time simulation integrates."""
+    out = [(f"[[spring]] #{i}", "modulation", t.modulation.model_dump()) for i, t in enumerate(doc.spring, 1)
+           if t.modulation is not None]
+    out += [(f"[[driver]] #{i}", "programme", t.programme.law) for i, t in enumerate(doc.driver, 1)
+            if t.programme is not None]
+    out += [(f"[[motor]] #{i}", "kind", "motor") for i, _ in enumerate(getattr(doc, "motor", ()), 1)]
+    return out
+
+
+def _refuse_outside_event_solver(doc) -> None:
+    """Modulated springs, programme laws and motors are integrated by the event (or regularised)
+    solver: a clear error for a [steady] table or the Moreau-Jean stepper, which would not see them."""
+    found = _time_domain_only(doc)
+    if not found:
+        return
+    where, key, value = found[0]
+    if getattr(doc, "steady", None) is not None:
+        raise ModelError(where, key, value, "a time simulation ([simulation], method = 'event'): a [steady] "
+                         "periodic state of a model with a modulated spring, a programme law or a motor is not "
+                         "available (the stability of a pulsating linear system: [analysis] type = 'parametric')")
+    sim = getattr(doc, "simulation", None)
+    if sim is not None and sim.method == "moreau":
+        raise ModelError(where, key, value, "[simulation] method = 'event' (the Moreau-Jean stepper does not "
+                         "integrate modulated springs, programme laws or motors)")
+
+
 def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
     """The nonsmooth problem of a lumped model file (elements, drivers, forces, variable mass)."""
+    _refuse_outside_event_solver(doc)
     lm = lumped_model(doc)
     if not lm.bodies:
         raise ModelError("model file", "body", None, "at least one [[body]] table")
@@ -118,6 +175,17 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
         g = coordinate(t, where)
         cls, kw, flip = t.element(where, "lumped", weight)
         elements.append(cls(name=name, g=np.negative(g) if flip else g, **kw))
+    used = {el.name for el in elements}
+    for i, t in enumerate(doc.spring, 1):
+        if t.modulation is None:
+            continue
+        where = f"[[spring]] #{i}"
+        name = f"spring{i}.modulation"
+        if name in used:
+            raise ModelError(where, "modulation", name, "an element name not used by another element")
+        g = coordinate(_SpringCoordinate(t.between, t.ratios), where)
+        m = t.modulation
+        elements.append(ModulatedSpring(name=name, g=g, k=t.k, depth=m.depth, omega=m.omega, phase=m.phase))
 
     forces = []
     for i, t in enumerate(doc.force, 1):
@@ -134,10 +202,17 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
         forces.append(ExternalForce(g=g, value=value, amplitude=t.amplitude, omega=t.omega, phase=t.phase))
 
     drivers = {}
+    programmes = {t.name: (i, t.programme) for i, t in enumerate(doc.driver, 1) if t.programme is not None}
     for d in lm.drivers:
         if d.name in indep:
-            drivers[indep.index(d.name)] = MotionLaw(offset=d.offset, velocity=d.velocity or 0.0,
-                                                     amplitude=d.amplitude, omega=d.omega, phase=d.phase)
+            base = dict(offset=d.offset, velocity=d.velocity or 0.0, amplitude=d.amplitude, omega=d.omega,
+                        phase=d.phase)
+            if d.name in programmes:
+                i, prog = programmes[d.name]
+                drivers[indep.index(d.name)] = ProgrammeMotion(law=programme_law(prog, f"[[driver]] #{i}", t_end),
+                                                                 **base)
+            else:
+                drivers[indep.index(d.name)] = MotionLaw(**base)
     for n, b in bodies.items():
         if n not in indep and (b.x0 != 0 or b.v0 != 0):
             raise ModelError(f"[[body]] {n!r}", "x0" if b.x0 != 0 else "v0", b.x0 if b.x0 != 0 else b.v0,
@@ -149,3 +224,11 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
             x0[j], v0[j] = bodies[n].x0, bodies[n].v0
     return ProblemSpec(system=ls, elements=elements, drivers=drivers, forces=forces, mass_rate=Mdot,
                        reactive=Creact, x0=x0, v0=v0, damping_report=psi_report)
+
+
+class _SpringCoordinate:
+    """The coordinate keys of a [[spring]] (s = r_b x_b - r_a x_a) in the form ``coordinate`` reads."""
+
+    def __init__(self, between, ratios):
+        self.between, self.ratios = between, tuple(ratios)
+        self.body = self.x = self.ratio = None

@@ -1,4 +1,4 @@
-"""Tables of the linear analyses: ``[analysis]`` (modal or forced), ``[damping]``, ``[[load]]``,
+"""Tables of the linear analyses: ``[analysis]`` (modal, forced or parametric), ``[damping]``, ``[[load]]``,
 ``[[base_motion]]`` and ``[[response]]``.  ``[damping]`` has one meaning in every kind of file:
 the global damping added to the model's own dampers and dissipation coefficients (design.md §3)."""
 from __future__ import annotations
@@ -68,11 +68,131 @@ class ForcedAnalysis(Table):
         return [k for k in ("frequencies_hz", "omega_rad_s", "sweep_hz") if getattr(self, k) is not None]
 
 
+class OmegaGrid(Table):
+    """An excitation-frequency grid of the parametric chart: ``{ start, stop, points }``."""
+
+    start: Positive
+    """First excitation frequency Omega (rad/s, or Omega / omega_1 for omega_ratio)."""
+    stop: Positive
+    """Last excitation frequency (> start)."""
+    points: Annotated[int, Field(ge=2)] = 161
+    """Number of equally spaced frequencies."""
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.stop > self.start:
+            rule("stop", self.stop, f"a frequency above start = {self.start}")
+        return self
+
+
+class DepthGrid(Table):
+    """The depth grid of the parametric chart (its vertical axis eps): ``{ max, min, points }``."""
+
+    max: Positive
+    """Largest depth of pulsation eps (below the depth at which K(t) or M(t) stops being positive definite)."""
+    min: NonNegative = 0.0
+    """Smallest depth eps (< max)."""
+    points: Count = 41
+    """Number of equally spaced depths."""
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.max > self.min:
+            rule("max", self.max, f"a depth above min = {self.min}")
+        return self
+
+
+class Modulation(Table):
+    """``[[analysis.modulation]]``: one pulsating term, ``-eps * depth * P * sin(harmonic * Omega t + phase)``
+    added to K (``target = "stiffness"``) or to M (``"inertia"``), textbook (7.1)-(7.7).  ``P`` is the part of
+    the matrix named by one of ``spring``, ``body``, ``segment``, ``point``; none of them: the whole K or M."""
+
+    target: Literal["stiffness", "inertia"] = "stiffness"
+    """What pulsates: the stiffness K or the inertia M (variable reduced inertia of a mechanism)."""
+    spring: Count | None = None
+    """Lumped models: the [[spring]] (1-based, in file order) whose stiffness pulsates."""
+    body: Annotated[str, Field(min_length=1)] | None = None
+    """Lumped models: the [[body]] (name) whose inertia pulsates."""
+    segment: Count | None = None
+    """FE models: the [[segment]] (1-based) whose stiffness (or distributed inertia) pulsates."""
+    point: Count | None = None
+    """FE models: the [[point]] (1-based) whose spring k, kr (or mass and inertia) pulsates."""
+    depth: float = 1.0
+    """Relative depth of this term (the chart's eps multiplies it; negative flips the sign)."""
+    harmonic: Count = 1
+    """Harmonic h of the term: sin(h Omega t + phase)."""
+    phase: float = 0.0
+    """Phase of the term, rad."""
+    label: str = ""
+    """Free text naming the term in outputs."""
+
+    @model_validator(mode="after")
+    def _one_part(self):
+        given = [k for k in ("spring", "body", "segment", "point") if getattr(self, k) is not None]
+        if len(given) > 1:
+            rule(given[1], getattr(self, given[1]), f"one part per term (this term already names {given[0]} = "
+                 f"{getattr(self, given[0])!r}; add another [[analysis.modulation]] for a second part)")
+        if self.spring is not None and self.target != "stiffness":
+            rule("spring", self.spring, "target = 'stiffness' (a spring has no inertia; use body = .. for an inertia)")
+        if self.body is not None and self.target != "inertia":
+            rule("body", self.body, "target = 'inertia' (a body has no stiffness; use spring = .. for a stiffness)")
+        return self
+
+    @property
+    def part_key(self) -> str | None:
+        """The key naming the pulsating part, or None (the whole matrix)."""
+        return next((k for k in ("spring", "body", "segment", "point") if getattr(self, k) is not None), None)
+
+
+class ParametricAnalysis(Table):
+    """``[analysis] type = "parametric"``: Floquet stability chart of the linear model with periodic stiffness
+    and/or inertia (textbook ch. 7, Fig. 7.4): max |multiplier| over the (eps, Omega) grid, the tongue edges at
+    chosen depths and the damping thresholds eps* of the principal tongues.  Damping: the [damping] table and
+    the model's dampers and psi values (psi -> zeta = psi / (4 pi), (7.31))."""
+
+    type: Literal["parametric"]
+    modulation: Annotated[list[Modulation], Field(min_length=1)]
+    """[[analysis.modulation]]: the pulsating terms (at least one)."""
+    omega_rad_s: OmegaGrid | None = None
+    """Excitation frequencies Omega: { start, stop, points }, rad/s."""
+    omega_ratio: OmegaGrid | None = None
+    """Excitation frequencies as Omega / omega_1 (first natural frequency of the mean system): { start, stop, points }."""
+    depth: DepthGrid
+    """Depths of pulsation eps: { max, min = 0, points = 41 }."""
+    boundaries_at: list[NonNegative] = []
+    """Depths at which the tongue edges are located by root finding."""
+    boundary_samples: Annotated[int, Field(ge=2)] = 401
+    """Omega samples of each edge search (thin tongues between samples are searched too)."""
+    thresholds: bool = True
+    """Damping thresholds eps* of the principal tongues Omega = 2 omega_r inside the Omega range."""
+    inertia_form: Literal["programme", "momentum", "newton"] = "programme"
+    """Equation of a pulsating inertia: 'programme' (7.7) M q'' + (C + M') q' + (K + M''/2) q = 0, 'momentum'
+    (M q')' + C q' + K q = 0, 'newton' M q'' + C q' + K q = 0."""
+    modes: Count | None = None
+    """Project on the lowest modes of the mean system (required above 60 free DOFs)."""
+    tolerance: Annotated[float, Field(gt=0, le=1e-4)] = 1e-10
+    """Relative error target of each monodromy matrix (step doubling of the sixth-order Magnus integrator)."""
+    stability_margin: Annotated[float, Field(gt=0, le=1e-2)] = 1e-6
+    """A point is stable if max |multiplier| < 1 + stability_margin."""
+
+    @model_validator(mode="after")
+    def _grid(self):
+        keys = [k for k in ("omega_rad_s", "omega_ratio") if getattr(self, k) is not None]
+        if len(keys) != 1:
+            rule("omega_rad_s", keys or None, "exactly one of omega_rad_s = { start, stop, points } (rad/s) or "
+                 "omega_ratio = { start, stop, points } (Omega / omega_1)")
+        for d in self.boundaries_at:
+            if d > self.depth.max:
+                rule("boundaries_at", self.boundaries_at, f"depths <= depth.max = {self.depth.max}")
+        return self
+
+
 def _analysis_type(v) -> str:
     return v.get("type", "modal") if isinstance(v, dict) else getattr(v, "type", "modal")
 
 
-Analysis = Annotated[Union[Annotated[ModalAnalysis, Tag("modal")], Annotated[ForcedAnalysis, Tag("forced")]],
+Analysis = Annotated[Union[Annotated[ModalAnalysis, Tag("modal")], Annotated[ForcedAnalysis, Tag("forced")],
+                           Annotated[ParametricAnalysis, Tag("parametric")]],
                      Discriminator(_analysis_type)]
 
 

@@ -348,3 +348,29 @@ class Contact(Coordinate):
         lower, upper = (-self.delta, self.delta) if self.delta is not None else (
             -inf if self.lower is None else self.lower, inf if self.upper is None else self.upper)
         return E.Contact, dict(k=self.k, c=self.c, lower=lower, upper=upper), False
+
+
+@element_table("motor")
+class Motor(Coordinate):
+    """``[[motor]]``: the motor as a model element, torque M along s (the rotor's angle) with the
+    dynamic characteristic T M' + M = (1 - s'/omega0)/nu (textbook (5.54), §5.10, (3.15)): the torque
+    is one more state of the event solver's exact pieces; T = 0 is the static characteristic."""
+
+    omega0: Positive
+    """Ideal no-load speed omega_d0, rad/s."""
+    nu: Positive
+    """Slope nu_d of the static characteristic, 1/(N m): M = (1 - omega/omega0)/nu."""
+    T: NonNegative = 0.0
+    """Electromagnetic time constant T_d, s (0: the static characteristic, no torque state)."""
+    torque0: float = 0.0
+    """Torque at t = 0 (default 0: the motor switched on at t = 0; only with T > 0), N m."""
+
+    @model_validator(mode="after")
+    def _where_given(self):
+        self._require_where()
+        if self.torque0 != 0 and self.T == 0:
+            rule("torque0", self.torque0, "0 with T = 0 (the static characteristic has no torque state)")
+        return self
+
+    def element(self, where, kind, weight=None):
+        return E.Motor, dict(omega0=self.omega0, nu=self.nu, T=self.T, torque0=self.torque0), False

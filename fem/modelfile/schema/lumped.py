@@ -2,7 +2,8 @@
 ``[[damper]]`` and ``[[gear]]`` -- the same tables in lumped and hybrid files (textbook §4.4-4.9)."""
 from __future__ import annotations
 
-from typing import Annotated, Union
+import math
+from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
@@ -47,8 +48,81 @@ class Body(Table):
         return self
 
 
+CAM_LAWS = ("cycloidal", "harmonic", "polynomial345", "constant_acceleration", "constant_velocity")
+"""The standard cam laws of :mod:`discrete.motion.cam_laws` (textbook §2.5, §6.2)."""
+
+
+class Programme(Table):
+    """``programme = {..}`` of a ``[[driver]]``: a programme (cam) motion added to the driver's law
+    (textbook §2.5, §5.8-5.9, §6.1-6.2), integrated exactly by the event solver with events at its
+    knots.  The law is given in the cam angle phi = cam_speed (t - start): a standard cam cycle
+    (dwell-rise-dwell-return of height ``stroke``, ``law`` = cycloidal | harmonic | polynomial345 |
+    constant_acceleration | constant_velocity) or ``law = "table"``: a C2 cubic spline through
+    (``phi``, ``x``).  Time simulations of lumped models (method "event" or "regularised"); the
+    linear analyses see the driver's constant/harmonic law only."""
+
+    law: Literal["cycloidal", "harmonic", "polynomial345", "constant_acceleration", "constant_velocity", "table"]
+    """Law of the rise (and of the return unless return_law): a standard cam law or "table"."""
+    cam_speed: Positive
+    """Angular speed of the cam omega0, rad/s: phi = cam_speed (t - start) ((2.13): x' = omega0 Pi')."""
+    start: float = 0.0
+    """Time at which the cycle starts (phi = 0; a table: its first angle), s; before it a periodic law
+    is its periodic continuation (a non-periodic table must start at or before t = 0 and cover t_end)."""
+    stroke: float | None = None
+    """Standard laws: the rise height h (displacement or angle of the driven coordinate)."""
+    rise: Positive | None = None
+    """Standard laws: cam angle of the rise, rad."""
+    top_dwell: NonNegative = 0.0
+    """Standard laws: cam angle of the dwell at the top, rad."""
+    return_: Positive | None = Field(default=None, alias="return")
+    """Standard laws: cam angle of the return, rad."""
+    return_law: Literal["cycloidal", "harmonic", "polynomial345", "constant_acceleration",
+                        "constant_velocity"] | None = None
+    """Standard laws: law of the return (default: law)."""
+    cycle: Positive = 2 * math.pi
+    """Standard laws: cam angle of one cycle, rad (the rest after the return is a dwell at 0)."""
+    phi: list[float] | None = None
+    """law = "table": cam angles, rad (at least 3, strictly increasing)."""
+    x: list[float] | None = None
+    """law = "table": the displacements at phi."""
+    periodic: bool = True
+    """law = "table": the table repeats with period phi[-1] - phi[0] (needs x[0] == x[-1])."""
+
+    @model_validator(mode="after")
+    def _keys(self):
+        std = ("stroke", "rise", "return_", "top_dwell", "return_law", "cycle")
+        if self.law == "table":
+            for k in std:
+                if self.given(k) or (k == "return_" and self.return_ is not None):
+                    rule(k.rstrip("_"), getattr(self, k), 'only with a standard law (law = "table" takes phi and x)')
+            if self.phi is None or self.x is None:
+                rule("phi" if self.phi is None else "x", None, 'the table phi = [..], x = [..] with law = "table"')
+            if len(self.phi) < 3 or any(b <= a for a, b in zip(self.phi, self.phi[1:])):
+                rule("phi", self.phi, "at least 3 strictly increasing cam angles (rad)")
+            if len(self.x) != len(self.phi):
+                rule("x", self.x, f"{len(self.phi)} values (one per phi)")
+            if self.periodic and abs(self.x[0] - self.x[-1]) > 1e-12 * max(1.0, max(map(abs, self.x))):
+                rule("x", [self.x[0], self.x[-1]], "x[0] == x[-1] for a periodic table (or periodic = false)")
+        else:
+            for k in ("phi", "x"):
+                if getattr(self, k) is not None:
+                    rule(k, getattr(self, k), 'only with law = "table"')
+            if self.given("periodic"):
+                rule("periodic", self.periodic, 'only with law = "table" (a cam cycle is periodic)')
+            if self.stroke is None or self.stroke == 0:
+                rule("stroke", self.stroke, "the rise height, a non-zero number (required with a standard law)")
+            if self.rise is None or self.return_ is None:
+                k = "rise" if self.rise is None else "return"
+                rule(k, None, f"the cam angle of the {k} in rad (required with a standard law)")
+            total = self.rise + self.top_dwell + self.return_
+            if total > self.cycle * (1 + 1e-12):
+                rule("cycle", self.cycle, f"at least rise + top_dwell + return = {total!r} rad")
+        return self
+
+
 class Driver(Table):
-    """``[[driver]]``: prescribed motion x(t) = offset + velocity t + amplitude sin(omega t + phase).
+    """``[[driver]]``: prescribed motion x(t) = offset + velocity t + amplitude sin(omega t + phase)
+    (+ a programme law, ``programme = {..}``).
 
     Lumped models: a named coordinate (``name``) with an optional inertia; hybrid models: an FE DOF
     (``x``, ``dof``)."""
@@ -71,6 +145,9 @@ class Driver(Table):
     """Phase of the harmonic part, rad."""
     inertia: NonNegative = 0.0
     """Lumped models: inertia of the driven coordinate (enters the reactions only)."""
+    programme: Programme | None = None
+    """A programme (cam) law added to the motion: { law, cam_speed, stroke, rise, top_dwell, return, .. }
+    (time simulations of lumped models)."""
 
     @model_validator(mode="after")
     def _law(self):
@@ -79,6 +156,20 @@ class Driver(Table):
         if self.name == "ground":
             rule("name", self.name, "a non-empty name other than 'ground'")
         return self
+
+
+class Modulation(Table):
+    """``modulation = {depth, omega, phase}`` of a ``[[spring]]``: the stiffness pulsates as
+    k (1 - depth sin(omega t + phase)) (textbook (7.1), c(t) = c0 - dc sin(Omega t)), integrated by
+    the event solver (time simulations of lumped models; the linear analyses use the constant k, the
+    stability chart is [analysis] type = "parametric")."""
+
+    depth: Annotated[float, Field(ge=0, lt=1)]
+    """Relative depth eps = dc/c0 of the pulsation, 0 <= depth < 1 (the stiffness stays positive)."""
+    omega: Positive
+    """Angular frequency Omega of the pulsation, rad/s."""
+    phase: float = 0.0
+    """Phase of the pulsation, rad (pi: k (1 + depth sin omega t))."""
 
 
 class Spring(Table):
@@ -94,11 +185,15 @@ class Spring(Table):
     """Viscous coefficient of a parallel dashpot, N s/m or N m s/rad."""
     psi: NonNegative = 0.0
     """Dissipation coefficient of the spring (hysteretic damping in harmonic analysis)."""
+    modulation: Modulation | None = None
+    """Periodically varying stiffness k (1 - depth sin(omega t + phase)): { depth, omega, phase }."""
 
     @model_validator(mode="after")
     def _something(self):
         if not (self.given("k") or self.given("c")):
             rule("k", None, "the stiffness k (and/or a dashpot c) (required key missing)")
+        if self.modulation is not None and not self.k > 0:
+            rule("modulation", self.modulation.model_dump(), "a stiffness k > 0 to modulate")
         return self
 
 

@@ -46,7 +46,10 @@ def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise:
         xt = t.omega_at_minimum_rad_s / w1
         ax.plot(xt, t.depth_minimum, "o", color="tab:green", ms=5)
         right = xt > x[0] + 0.7 * (x[-1] - x[0])
-        ax.annotate(f"eps* = {t.depth_minimum:.5g}", (xt, t.depth_minimum), textcoords="offset points",
+        text = f"eps* = {t.depth_minimum:.5g}"
+        if np.isfinite(t.depth_at_centre) and abs(t.depth_at_centre - t.depth_minimum) > 5e-6 * t.depth_minimum:
+            text += f" (tip); {t.depth_at_centre:.5g} at 2 w{t.mode}"
+        ax.annotate(text, (xt, t.depth_minimum), textcoords="offset points",
                     xytext=(-6 if right else 6, -12), ha="right" if right else "left", fontsize=8, color="tab:green")
         first = False
     # predicted centres (7.26) on a top axis: principal 2 w_r/s and combinations (w_r + w_q)/s
