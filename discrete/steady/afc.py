@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import ModelError, SolverError
 from .continuation import arclength, refine_fold
-from .hb import HBModel, floquet_hb, time_guess
+from .hb import HBModel, floquet_hb_batch, time_guess
 from .shooting import ShootingModel
 from .system import PeriodicSystem
 
@@ -195,6 +195,31 @@ class SteadyModel:
                "peak": np.max(np.abs(y))}[m]
         return float(val / self.cfg.scale)
 
+    def measure_hb(self, hb, states, omegas, points: int | None = None) -> list:
+        """:meth:`measure` of HB orbits (coefficients ``states``) sampled at ``points`` (default
+        max(512, N)) instants -- all orbits at once (the ``h1`` measure one by one)."""
+        P = points or max(512, hb.N)
+        if not len(states):
+            return []
+        if self.cfg.measure == "h1":
+            return [self.measure(*hb.evaluate(x, w, points=P), w) for x, w in zip(states, omegas)]
+        s = self.system
+        Q = np.asarray(states, float).reshape(-1, s.n, hb.m)
+        w = np.asarray(omegas, float)[:, None]
+        G, DG = hb.basis(P)
+        if self.resp_el is not None:
+            e = self.resp_el
+            g = hb.grid(P)
+            A = s.Gf[e] @ Q                                   # (orbits, 2H+1)
+            S = A @ G + g.sa[e] + g.sb[e] / w
+            Sd = (w / hb.nu) * (A @ DG) + g.sda[e] + w * g.sdb[e]
+            y = np.abs(s.elements[e].smooth_force(S, Sd, s.eps)[0])
+        else:
+            y = Q[:, self.resp_dof] @ G
+        val = {"amplitude": lambda: 0.5 * (np.max(y, axis=1) - np.min(y, axis=1)), "max": lambda: np.max(y, axis=1),
+               "min": lambda: np.min(y, axis=1), "peak": lambda: np.max(np.abs(y), axis=1)}[self.cfg.measure]()
+        return [float(x) for x in val / self.cfg.scale]
+
 
 
 def _record_stability(mu, max_multiplier: list, critical: list, stable: list) -> None:
@@ -225,18 +250,17 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
     xs = np.full(X0.size, max(np.max(np.abs(X0)), 1e-12))
 
     def fun(x, w, need_w=True):
-        R, J = hb.residual(x, w)
-        return R, J, (hb.residual_omega(x, w) if need_w else None)
+        return hb.evaluate_residual(x, w, jac=True, dw=need_w)
 
     br = arclength(fun, X0, w0, w1, xscale=xs, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
                    ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, callback=_report(progress))
-    om, resp, stab, mm, states, crit = [], [], [], [], [], []
-    for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
-        t, q, v = hb.evaluate(x, w, points=max(512, hb.N))
+    om, stab, mm, states, crit = [], [], [], [], []
+    mus = floquet_hb_batch(hb, br.x, br.w) if cfg.stability and br.x else [None] * len(br.x)
+    resp = sm.measure_hb(hb, br.x, br.w)
+    for x, w, mu in zip(br.x, br.w, mus):           # all inside the range: a crossing is landed on the bound
         states.append(x)
         om.append(w)
-        resp.append(sm.measure(t, q, v, w))
-        _record_stability(floquet_hb(hb, x, w) if cfg.stability else None, mm, crit, stab)
+        _record_stability(mu, mm, crit, stab)
     folds = []
     for i, wf, fr in br.folds:
         try:

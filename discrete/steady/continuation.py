@@ -234,7 +234,8 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
 def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
     """Locate a fold between two branch points a, b precisely.  Local parametrisation: the component
     k that changes most is fixed to a value s, the rest of x and w solve R = 0 (well posed at a fold);
-    w(s) has an extremum at the fold, found by bounded scalar minimisation.  Returns (x, w)."""
+    w(s) has an extremum at the fold, found by bounded scalar minimisation (each solve warm-started
+    from the nearest parameter solved before).  Returns (x, w)."""
     from scipy.optimize import minimize_scalar
 
     xs = np.asarray(xscale, float)
@@ -247,9 +248,13 @@ def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
     cache = {}
 
     def solve(s):
-        f = (s - sa) / span if span != 0 else 0.0
-        x = xa + f * (xb - xa)
-        w = wa + f * (wb - wa)
+        if cache:         # warm start from the nearest solved parameter (the minimiser's points cluster)
+            near = min(cache, key=lambda r: abs(r - s))
+            x, w = cache[near][0].copy(), cache[near][1]
+        else:
+            f = (s - sa) / span if span != 0 else 0.0
+            x = xa + f * (xb - xa)
+            w = wa + f * (wb - wa)
         x[k] = s
         for _ in range(30):
             R, Jx, Jw = fun(x, w)

@@ -17,13 +17,24 @@ along the HB orbit, integrated over one period by classical RK4 (``floquet_hb``)
 from __future__ import annotations
 
 import numpy as np
+from scipy.sparse import csr_matrix
 
 from ..linalg.expm import expm_batch
 from ..errors import SolverError
 
 
 class HBModel:
-    """Residual and Jacobian of harmonic balance for a :class:`PeriodicSystem`."""
+    """Residual and Jacobian of harmonic balance for a :class:`PeriodicSystem`.
+
+    Evaluation (:meth:`evaluate_residual`): the linear part is applied in coefficient space
+    (``K Q + W C Q D + W^2 M Q D^2``, W = omega/nu: exact, the sampled basis is orthogonal for
+    N > 2H); only the element coordinates ``s_e = g_e . q + s_e(t)`` are sampled, their laws
+    evaluated at the N instants and projected back.  The Jacobian block of an element is the Galerkin
+    matrix of multiplication by dF/ds (dF/ds') on the grid -- ``T(c)[k, l] = sum_n Pm[n, k] c_n
+    G[l, n]`` -- formed from the DFT of c by the product-to-sum rules (O(H^2) after one FFT, equal to
+    the sampled sums), the frequency derivative ``dR/domega`` analytically from the same samples.
+    Everything that depends on the model only (bases, exogenous terms by powers of omega, index maps)
+    is built once."""
 
     def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None):
         self.s = system
@@ -36,20 +47,44 @@ class HBModel:
         N = samples or (max(1024, 16 * H) if smooth == 0 else max(256, 16 * H) if smooth == 1 else max(64, 8 * H + 4))
         self.N = N
         th = 2 * np.pi * np.arange(N) / N
-        G = np.ones((2 * H + 1, N))
+        G = _basis(H, th)
         D = np.zeros((2 * H + 1, 2 * H + 1))
         for k in range(1, H + 1):
-            G[2 * k - 1] = np.cos(k * th)
-            G[2 * k] = np.sin(k * th)
             D[2 * k, 2 * k - 1] = k       # d/dtheta: a_k' = k b_k, b_k' = -k a_k   (Qd = Q @ D)
             D[2 * k - 1, 2 * k] = -k
         W = np.full(2 * H + 1, 2.0 / N)
         W[0] = 1.0 / N
         self.G, self.D, self.theta = G, D, th
+        self.W = W
         self.Pm = G.T * W          # (N, 2H+1): R = r @ Pm
         self.DG = D @ G
         self.DDG = D @ D @ G
-        self.nq = system.n * (2 * H + 1)
+        self.DD = D @ D
+        self.m = 2 * H + 1
+        self.nq = system.n * self.m
+        self._grid = system.grid_parts(th, self.nu)
+        g = self._grid
+        self._fP = tuple(f @ self.Pm for f in (g.fa, g.fb, g.fc, g.fd))   # projected forcing by powers of omega
+        # which exogenous terms are present (most models: a harmonic force or driver only)
+        self._forcing_terms = [(k, None) for k, f in enumerate(self._fP) if np.any(f)]
+        self._exo = tuple(bool(np.any(a)) for a in (g.sa, g.sb, g.sda, g.sdb))
+        self._gg = np.einsum("ei,ej->eij", system.Gf, system.Gf)
+        self._galerkin_maps = _galerkin_maps(H)
+        # the element blocks of the Jacobian by DOF pair: c_ij = sum_e g_ei g_ej dF_e (pairs i <= j
+        # touched by an element; (j, i) gets the same block)
+        iu, ju = np.triu_indices(system.n)
+        touched = np.any(self._gg[:, iu, ju] != 0, axis=0)
+        iu, ju = iu[touched], ju[touched]
+        self._pair_weights = np.ascontiguousarray(self._gg[:, iu, ju].T)          # (pairs, n_el)
+        low = iu != ju
+        self._pair_rows = np.concatenate([iu, ju[low]])
+        self._pair_cols = np.concatenate([ju, iu[low]])
+        self._pair_src = np.concatenate([np.arange(iu.size), np.flatnonzero(low)])
+        idx, coef = _block_maps(H, self.W, D)
+        cols = np.repeat(np.arange(self.m * self.m)[None, :], 4, axis=0)
+        self._block_map = csr_matrix((coef.ravel(), (cols.ravel(), idx.ravel())), shape=(self.m * self.m, 4 * self.m))
+        self._bases = {}
+        self._lin = (None, None, None, None)
 
     def times(self, omega):
         return self.theta * self.nu / omega
@@ -60,32 +95,106 @@ class HBModel:
         Om = omega / self.nu
         return Q @ self.G, Om * (Q @ self.DG), Om * Om * (Q @ self.DDG)
 
-    def residual(self, X, omega, jac=True):
+    # ------------------------------------------------------------ residual, Jacobians
+    def _linear_jacobians(self):
+        """kron(K, I), kron(C, D^T), kron(M, (D^2)^T) of the current K, C, M (rebuilt if replaced)."""
         s = self.s
-        n = s.n
-        t = self.times(omega)
-        q, v, a = self.states(X, omega)
-        Fs, Fq, Fv = s.rhs_terms(t, q, v, omega)
-        r = s.M @ a + s.C @ v + s.K @ q - Fs
-        R = (r @ self.Pm).ravel()
-        if not jac:
-            return R
-        Om = omega / self.nu
-        m = 2 * self.H + 1
-        J = np.zeros((n * m, n * m))
-        Jq = s.K[:, :, None] - Fq
-        Jv = s.C[:, :, None] - Fv
-        PmT = self.Pm.T
-        for i in range(n):
-            for j in range(n):
-                blk = (PmT * Jq[i, j]) @ self.G.T + Om * (PmT * Jv[i, j]) @ self.DG.T \
-                    + Om * Om * s.M[i, j] * (PmT @ self.DDG.T)
-                J[i * m:(i + 1) * m, j * m:(j + 1) * m] = blk
-        return R, J
+        key = self._lin
+        if key[0] is not s.K or key[1] is not s.C or key[2] is not s.M:
+            I = np.eye(self.m)
+            self._lin = (s.K, s.C, s.M, (np.kron(s.K, I), np.kron(s.C, self.D.T), np.kron(s.M, self.DD.T)))
+        return self._lin[3]
+
+    def galerkin(self, c):
+        """Galerkin matrices ``T(c) = Pm^T diag(c) G^T`` (k, m, m) of sampled functions c (k, N): from
+        the DFT of c by cos a cos b = (cos(a-b) + cos(a+b))/2 etc."""
+        i1, i2, c1, c2 = self._galerkin_maps
+        j = np.arange(2 * self.H + 1)
+        F = np.fft.rfft(c, axis=-1)[..., j] if 2 * self.H <= self.N // 2 else np.fft.fft(c, axis=-1)[..., j % self.N]
+        V = np.concatenate([F.real, -F.imag], axis=-1)
+        return (0.5 * self.W)[:, None] * (c1 * V[..., i1] + c2 * V[..., i2])
+
+    def element_blocks(self, cs, cv, Om):
+        """``T(cs) + Om T(cv) D^T`` (k, m, m) for sampled dF/ds, dF/ds' sums cs, cv (k, N): one FFT
+        and one sparse map of the DFT sums (four entries per matrix entry, :func:`_block_maps`)."""
+        k = cs.shape[0]
+        F = self._dft(np.concatenate([cs, cv]))
+        U = np.empty((k, 4 * self.m))
+        m = self.m
+        U[:, :m], U[:, m:2 * m] = F.real[:k], -F.imag[:k]
+        U[:, 2 * m:3 * m], U[:, 3 * m:] = Om * F.real[k:], -Om * F.imag[k:]
+        return (self._block_map @ U.T).T.reshape(k, m, m)
+
+    def _dft(self, c):
+        """sum_n c_n exp(-i j theta_n), j = 0 .. 2H, of sampled functions c (k, N)."""
+        if 2 * self.H <= self.N // 2:
+            return np.fft.rfft(c, axis=-1)[:, :self.m]
+        return np.fft.fft(c, axis=-1)[:, np.arange(self.m) % self.N]
+
+    def evaluate_residual(self, X, omega, jac=True, dw=False):
+        """(R, J or None, dR/domega or None) at coefficients X and frequency omega (class docstring)."""
+        s = self.s
+        n, m, nu = s.n, self.m, self.nu
+        Q = X.reshape(n, m)
+        Om = omega / nu
+        QD = Q @ self.D
+        QDD = QD @ self.D
+        R = s.K @ Q + Om * (s.C @ QD) + (Om * Om) * (s.M @ QDD)
+        fa, fb, fc, fd = self._fP
+        for part, scale in self._forcing_terms:
+            R -= (fa, fb, fc, fd)[part] * (1.0, 1.0 / omega, omega, omega * omega)[part]
+        nel = len(s.elements)
+        if nel:
+            g = self._grid
+            A = s.Gf @ Q
+            SG = np.concatenate([A, A @ self.D]) @ self.G          # [A G; A D G]
+            S, ADG = SG[:nel], SG[nel:]
+            if self._exo[0]:
+                S = S + g.sa
+            if self._exo[1]:
+                S = S + g.sb / omega
+            Sd = Om * ADG
+            if self._exo[2]:
+                Sd = Sd + g.sda
+            if self._exo[3]:
+                Sd = Sd + omega * g.sdb
+            F, dFs, dFv = s.element_laws(S, Sd)
+            R -= s.Gf.T @ (F @ self.Pm)
+        Rw = None
+        if dw:
+            Rw = (s.C @ QD + (2 * Om) * (s.M @ QDD)) / nu
+            for part, _ in self._forcing_terms:
+                if part:
+                    Rw -= (None, -fb / omega ** 2, fc, (2 * omega) * fd)[part]
+            if nel:
+                dSd = ADG / nu + g.sdb if self._exo[3] else ADG / nu
+                dS = dFv * dSd
+                if self._exo[1]:
+                    dS = dS - dFs * g.sb / omega ** 2
+                Rw -= s.Gf.T @ (dS @ self.Pm)
+            Rw = Rw.ravel()
+        J = None
+        if jac:
+            JK, JC, JM = self._linear_jacobians()
+            J = JK + Om * JC + (Om * Om) * JM
+            if nel and self._pair_src.size:
+                B = self.element_blocks(self._pair_weights @ dFs, self._pair_weights @ dFv, Om)
+                if n == 1:
+                    J -= B[0]
+                else:
+                    J = J.reshape(n, m, n, m)
+                    J[self._pair_rows, :, self._pair_cols, :] -= B[self._pair_src]
+                    J = J.reshape(n * m, n * m)
+        return R.ravel(), J, Rw
+
+    def residual(self, X, omega, jac=True):
+        R, J, _ = self.evaluate_residual(X, omega, jac=jac)
+        return (R, J) if jac else R
 
     def residual_omega(self, X, omega):
-        h = 1e-6 * omega
-        return (self.residual(X, omega + h, jac=False) - self.residual(X, omega - h, jac=False)) / (2 * h)
+        """dR/domega (analytic: the omega-dependence of the linear part, the forcing and the element
+        velocities at fixed coefficients)."""
+        return self.evaluate_residual(X, omega, jac=False, dw=True)[2]
 
     def solve(self, X0, omega, tol=1e-10, maxit=40):
         """Newton at fixed omega; returns (X, iterations)."""
@@ -134,19 +243,80 @@ class HBModel:
             pass
         return X.ravel()
 
+    def basis(self, points: int):
+        """(G, D G) sampled at ``points`` equidistant phases (cached)."""
+        b = self._bases.get(points)
+        if b is None:
+            G = _basis(self.H, 2 * np.pi * np.arange(points) / points)
+            b = self._bases[points] = (G, self.D @ G)
+        return b
+
+    def grid(self, points: int):
+        """The exogenous terms (:meth:`PeriodicSystem.grid_parts`) at ``points`` equidistant phases (cached)."""
+        key = ("grid", points)
+        g = self._bases.get(key)
+        if g is None:
+            g = self._bases[key] = self.s.grid_parts(2 * np.pi * np.arange(points) / points, self.nu)
+        return g
+
     def evaluate(self, X, omega, points=None):
         """Time series (t, q, v) over one period at ``points`` equidistant instants."""
         n = self.s.n
-        H = self.H
         P = points or self.N
+        G, DG = self.basis(P)
         th = 2 * np.pi * np.arange(P) / P
-        G = np.ones((2 * H + 1, P))
-        for k in range(1, H + 1):
-            G[2 * k - 1] = np.cos(k * th)
-            G[2 * k] = np.sin(k * th)
-        Q = X.reshape(n, 2 * H + 1)
+        Q = X.reshape(n, 2 * self.H + 1)
         Om = omega / self.nu
-        return th / Om, Q @ G, Om * (Q @ self.D @ G)
+        return th / Om, Q @ G, Om * (Q @ DG)
+
+
+def _basis(H: int, th) -> np.ndarray:
+    """[1, cos th, sin th, ..., cos H th, sin H th] at the phases th: (2H+1, len(th))."""
+    G = np.ones((2 * H + 1, np.size(th)))
+    for k in range(1, H + 1):
+        G[2 * k - 1] = np.cos(k * th)
+        G[2 * k] = np.sin(k * th)
+    return G
+
+
+def _galerkin_maps(H: int):
+    """Index and sign maps of :meth:`HBModel.galerkin`: with V = [C_0..C_2H, S_0..S_2H] (the sums of
+    c cos(j th), c sin(j th)), T[k, l] = W_k / 2 (c1 V[i1] + c2 V[i2])."""
+    m = 2 * H + 1
+    freq = np.array([0] + [k for k in range(1, H + 1) for _ in (0, 1)])
+    sine = np.array([False] + [s for _ in range(1, H + 1) for s in (False, True)])
+    a, b = freq[:, None], freq[None, :]
+    sk, sl = sine[:, None], sine[None, :]
+    d, p = np.abs(a - b), a + b
+    sgn = np.sign(a - b)
+    off = 2 * H + 1
+    same = sk == sl
+    # cos-cos: C_d + C_p;  sin-sin: C_d - C_p;  cos(k) sin(l): S_p - sgn S_d;  sin(k) cos(l): S_p + sgn S_d
+    i1 = np.where(same, d, off + p)
+    i2 = np.where(same, p, off + d)
+    c1 = np.ones((m, m))
+    c2 = np.where(same, np.where(sk, -1.0, 1.0), np.where(sk, sgn, -sgn)).astype(float)
+    return i1, i2, c1, c2
+
+
+def _block_maps(H: int, W, D):
+    """Gather maps of :meth:`HBModel.element_blocks`: with U = [C(cs), S(cs), Om C(cv), Om S(cv)]
+    (the DFT sums of the two functions), ``B.flat = sum_r U[idx[r]] coef[r]`` -- the Galerkin matrix
+    T(cs) of :func:`_galerkin_maps` plus T(cv) D^T, whose column l is column p(l) of T(cv) times
+    D[l, p(l)] (D has one entry per row)."""
+    m = 2 * H + 1
+    i1, i2, c1, c2 = _galerkin_maps(H)
+    half = (0.5 * np.asarray(W))[:, None]
+    # column l of D^T: l = 2k - 1 (cos k) takes column 2k (sin k) times -k; l = 2k takes 2k - 1 times k
+    p = np.zeros(m, int)
+    dl = np.zeros(m)
+    for k in range(1, H + 1):
+        p[2 * k - 1], dl[2 * k - 1] = 2 * k, -k
+        p[2 * k], dl[2 * k] = 2 * k - 1, k
+    off = 2 * m
+    idx = np.stack([i1, i2, off + i1[:, p], off + i2[:, p]]).reshape(4, -1)
+    coef = np.stack([half * c1, half * c2, half * c1[:, p] * dl[None, :], half * c2[:, p] * dl[None, :]]).reshape(4, -1)
+    return idx, coef
 
 
 def floquet_hb(model: HBModel, X, omega, steps: int | None = None):
@@ -156,24 +326,124 @@ def floquet_hb(model: HBModel, X, omega, steps: int | None = None):
     interval's transition matrix is ``expm(A_mid h)`` (exponential midpoint rule, 2nd order), computed
     for all intervals at once; the ordered product is formed by pairwise (tree) multiplication.
     """
+    return floquet_hb_batch(model, [X], [omega], steps)[0]
+
+
+def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk_entries: int = 1 << 22):
+    """:func:`floquet_hb` at many orbits at once (multipliers (P, 2n)): the midpoint Jacobians of all
+    orbits are sampled together, their exponentials formed in one batch (closed form
+    ``e^tau (cosh d I + sinh d / d (A - tau I))`` for 2x2 blocks, the [6/6] Pade of
+    :func:`~discrete.linalg.expm_batch` otherwise) and the ordered products by pairwise multiplication
+    in the same order as the single-orbit rule."""
     s = model.s
-    n = s.n
+    n, m, nel = s.n, model.m, len(s.elements)
+    Xs = np.asarray(Xs, float).reshape(-1, n, m)
+    omegas = np.asarray(omegas, float).ravel()
     M = steps or max(512, 2 * model.N)
-    T = 2 * np.pi * model.nu / omega
-    t, q, v = model.evaluate(X, omega, points=2 * M)
-    t, q, v = t[1::2], q[:, 1::2], v[:, 1::2]
-    _, Fq, Fv = s.rhs_terms(t, q, v, omega)
+    key = ("mid", M)
+    mid = model._bases.get(key)
+    if mid is None:
+        th = (2 * np.pi * np.arange(2 * M) / (2 * M))[1::2]
+        G = _basis(model.H, th)
+        mid = model._bases[key] = (G, model.D @ G, s.grid_parts(th, model.nu))
+    G, DG, grid = mid
     Minv = np.linalg.inv(s.M)
-    A = np.zeros((M, 2 * n, 2 * n))
-    A[:, :n, n:] = np.eye(n)
-    A[:, n:, :n] = -np.einsum("ij,jkm->mik", Minv, s.K[:, :, None] - Fq)
-    A[:, n:, n:] = -np.einsum("ij,jkm->mik", Minv, s.C[:, :, None] - Fv)
-    E = expm_batch(A * (T / M))
-    while E.shape[0] > 1:           # ordered product E[M-1] ... E[1] E[0]
-        if E.shape[0] % 2:
-            E = np.concatenate([E, np.eye(2 * n)[None]], axis=0)
-        E = E[1::2] @ E[0::2]
-    return np.linalg.eigvals(E[0])
+    d = 2 * n
+    P = max(1, int(chunk_entries // (M * d * d)))
+    out = np.empty((Xs.shape[0], d), complex)
+    for c0 in range(0, Xs.shape[0], P):
+        Q, w = Xs[c0:c0 + P], omegas[c0:c0 + P]
+        Om = w / model.nu
+        h = 2 * np.pi * model.nu / w / M
+        if nel:
+            A = s.Gf @ Q                                          # (P, nel, m)
+            S = A @ G + grid.sa + grid.sb / w[:, None, None]
+            Sd = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
+            _, dFs, dFv = s.element_laws(np.moveaxis(S, 1, 0), np.moveaxis(Sd, 1, 0))   # (nel, P, M)
+        if d == 2:        # one DOF: the 2x2 blocks as component arrays (P, M)
+            k = s.K[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFs, 1) if nel else 0.0)
+            c = s.C[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFv, 1) if nel else 0.0)
+            hh = np.broadcast_to(h[:, None], (Q.shape[0], M))
+            E = _expm2_parts(np.zeros_like(hh), hh, -Minv[0, 0] * k * h[:, None], -Minv[0, 0] * c * h[:, None])
+            while E[0].shape[1] > 1:
+                if E[0].shape[1] % 2:
+                    one = np.ones((Q.shape[0], 1))
+                    E = tuple(np.concatenate([x, v * one], axis=1) for x, v in zip(E, (1.0, 0.0, 0.0, 1.0)))
+                a, b, c_, d_ = E
+                E = (a[:, 1::2] * a[:, 0::2] + b[:, 1::2] * c_[:, 0::2], a[:, 1::2] * b[:, 0::2] + b[:, 1::2] * d_[:, 0::2],
+                     c_[:, 1::2] * a[:, 0::2] + d_[:, 1::2] * c_[:, 0::2], c_[:, 1::2] * b[:, 0::2] + d_[:, 1::2] * d_[:, 0::2])
+            Mono = np.stack([np.stack([E[0][:, 0], E[1][:, 0]], -1), np.stack([E[2][:, 0], E[3][:, 0]], -1)], -2)
+            out[c0:c0 + P] = np.linalg.eigvals(Mono)
+            continue
+        # the interval matrices depend on (h, dF_e/ds, dF_e/ds') only: piecewise-linear laws (contact on/off)
+        # and saturated friction (tanh' = 0 while slipping) repeat them exactly -- exponentiate each once
+        keys = np.concatenate([np.repeat(h, M)[:, None]] + ([dFs.reshape(nel, -1).T, dFv.reshape(nel, -1).T] if nel else []), axis=1)
+        first, inv = _unique_rows(keys)
+        uk = keys[first]
+        hu, fs, fv = uk[:, 0], uk[:, 1:1 + nel], uk[:, 1 + nel:]
+        Kq = s.K - np.einsum("eij,ue->uij", model._gg, fs)
+        Cv = s.C - np.einsum("eij,ue->uij", model._gg, fv)
+        hb3 = hu[:, None, None]
+        Y = np.zeros((hu.size, d, d))
+        Y[:, :n, n:] = np.eye(n) * hb3
+        Y[:, n:, :n] = -(Minv @ Kq) * hb3
+        Y[:, n:, n:] = -(Minv @ Cv) * hb3
+        E = expm_batch(Y)[inv.ravel()].reshape(Q.shape[0], M, d, d)
+        while E.shape[1] > 1:           # ordered product E[M-1] ... E[1] E[0]
+            if E.shape[1] % 2:
+                E = np.concatenate([E, np.broadcast_to(np.eye(d), (E.shape[0], 1, d, d))], axis=1)
+            E = E[:, 1::2] @ E[:, 0::2]
+        out[c0:c0 + P] = np.linalg.eigvals(E[:, 0])
+    return out
+
+
+def _unique_rows(keys):
+    """(first, inverse) of the distinct rows of a float array (rows = keys[first][inverse]): by a 64-bit
+    hash of the rows' bit patterns (one integer sort instead of a lexicographic one), verified exactly;
+    a collision falls back on numpy's row-wise unique."""
+    bits = np.ascontiguousarray(keys).view(np.uint64)
+    hsh = np.zeros(bits.shape[0], np.uint64)
+    with np.errstate(over="ignore"):
+        for j in range(bits.shape[1]):
+            hsh = (hsh ^ bits[:, j]) * np.uint64(0x100000001B3) + np.uint64(j + 1)
+    _, first, inv = np.unique(hsh, return_index=True, return_inverse=True)
+    inv = inv.ravel()
+    if np.array_equal(bits[first][inv], bits):
+        return first, inv
+    _, first, inv = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    return first, inv.ravel()
+
+
+def _expm2_parts(a, b, c, d):
+    """exp of the 2x2 matrices [[a, b], [c, d]] (component arrays) in closed form: with tau = tr/2
+    and x = ((a - d)/2)^2 + b c, exp = e^tau (ch I + sh (Y - tau I)), ch = cosh sqrt(x),
+    sh = sinh sqrt(x) / sqrt(x) (cos, sin for x < 0; their Taylor series for |x| < 1e-2, truncation
+    < 1e-20).  Returns the components (e11, e12, e21, e22)."""
+    tau = 0.5 * (a + d)
+    x = (0.5 * (a - d)) ** 2 + b * c
+    small = np.abs(x) < 1e-2
+    pos = x > 0
+    r = np.sqrt(np.abs(x))
+    if np.all(~pos | small):          # oscillatory (or nearly critical) everywhere: no hyperbolic branch
+        ch, sh = np.cos(r), np.sin(r)
+    else:
+        ch = np.where(pos, np.cosh(r), np.cos(r))
+        sh = np.where(pos, np.sinh(r), np.sin(r))
+    sh = sh / np.where(small, 1.0, r)
+    if np.any(small):
+        xs = x[small]
+        ch[small] = 1 + xs * (1 / 2 + xs * (1 / 24 + xs * (1 / 720 + xs * (1 / 40320 + xs / 3628800))))
+        sh[small] = 1 + xs * (1 / 6 + xs * (1 / 120 + xs * (1 / 5040 + xs * (1 / 362880 + xs / 39916800))))
+    et = np.exp(tau)
+    esh = et * sh
+    return et * (ch + sh * (a - tau)), esh * b, esh * c, et * (ch + sh * (d - tau))
+
+
+def _expm2(Y):
+    """exp of 2x2 matrices (..., 2, 2) by :func:`_expm2_parts`."""
+    E = np.empty_like(Y)
+    E[..., 0, 0], E[..., 0, 1], E[..., 1, 0], E[..., 1, 1] = _expm2_parts(Y[..., 0, 0], Y[..., 0, 1], Y[..., 1, 0], Y[..., 1, 1])
+    return E
 
 
 def backbone(model: HBModel, A: float, omega0: float, X0=None, tol=1e-12, maxit=50):

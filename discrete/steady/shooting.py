@@ -12,6 +12,9 @@ derivative).  Verified in ``tests/test_steady_shooting.py`` against expm(A T) fo
 and against the closed-form saltation product of a one-sided (bilinear) oscillator.  The step is
 ``h = 1e-6`` of the state's scale (truncation ~h^2, round-off ~1e-16/h: ~1e-10 relative).
 Floquet multipliers are its eigenvalues; stable if all |mu| < 1 + 1e-6.
+
+Cost: every map at one frequency reuses one solver and so its exact pieces (built once per mode),
+and the Problems of the few most recent frequencies are kept; a period map then costs its events.
 """
 from __future__ import annotations
 
@@ -19,27 +22,56 @@ import numpy as np
 
 from ..errors import SolverError
 from ..nonsmooth import Options, simulate
+from ..nonsmooth.solver import EventDrivenSolver
+
+# the solver's per-run reset used by ShootingModel._solver (private API of discrete.nonsmooth.solver);
+# without it every period map builds a fresh solver (same results, slower)
+_REUSABLE = hasattr(EventDrivenSolver, "_contact_force_tolerances")
 
 
 class ShootingModel:
     """Period map of ``factory(omega) -> Problem`` (the Problem built with forcing frequency omega)."""
 
     def __init__(self, factory, nu: int = 1, steps_per_period: int = 48, output_points: int = 2000,
-                 options: dict | None = None):
+                 options: dict | None = None, keep: int = 4, reuse: bool = True):
         self.factory = factory
         self.nu = int(nu)
         self.steps = int(steps_per_period)
         self.output_points = int(output_points)
-        self._cache = (None, None)
+        self._problems: dict = {}           # omega -> Problem (the ``keep`` most recent)
+        self._solvers: dict = {}            # (omega, dense) -> solver: its cache of exact pieces is reused
+        self.keep = max(1, int(keep))
+        self.reuse = bool(reuse) and _REUSABLE     # False: a fresh solver per period map (the old cost)
         self.n_sims = 0
         self.options = dict(options or {})
         p = self.problem(1.0)
         self.n = 2 * p.nf
 
     def problem(self, omega):
-        if self._cache[0] != omega:
-            self._cache = (omega, self.factory(omega))
-        return self._cache[1]
+        p = self._problems.pop(omega, None)
+        if p is None:
+            p = self.factory(omega)
+            if len(self._problems) >= self.keep:
+                old = next(iter(self._problems))
+                del self._problems[old]
+                for key in [k for k in self._solvers if k[0] == old]:
+                    del self._solvers[key]
+        self._problems[omega] = p            # most recent last
+        return p
+
+    def _solver(self, p, omega, dense, options):
+        """The event-driven solver of the Problem at ``omega``, kept between period maps: every map at
+        this frequency reuses its exact pieces (matrix exponentials, guard rows, work matrices --
+        functions of the mode only), which is most of the cost of a one-period run.  What depends on
+        the initial state is reset per run (the persistent-contact force tolerances scale with v0)."""
+        key = (omega, dense)
+        sol = self._solvers.get(key)
+        if sol is None or sol.p is not p:
+            sol = self._solvers[key] = EventDrivenSolver(p, Options(**options))
+        else:
+            sol.warnings = []
+            sol._contact_ftol = sol._contact_force_tolerances()
+        return sol
 
     def period(self, omega):
         return self.nu * 2 * np.pi / omega
@@ -54,7 +86,10 @@ class ShootingModel:
         if dense:      # output inside exact pieces, and a step limit for numerically integrated pieces
             kw["output_step"] = T / self.output_points
             kw["max_step"] = min(kw["max_step"], T / self.output_points)
-        res = simulate(p, periods * T, Options(**kw))
+        if self.reuse:
+            res = self._solver(p, omega, dense, kw).run(periods * T)
+        else:
+            res = simulate(p, periods * T, Options(**kw))
         self.n_sims += 1
         if res.stopped_early:
             raise SolverError(f"period map at omega = {omega!r}: {res.reason}")

@@ -23,9 +23,32 @@ Each element supplies its law (``Element.smooth_force``); this module does not l
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ..errors import ModelError
+
+
+@dataclass(frozen=True)
+class GridParts:
+    """Exogenous terms on a phase grid by powers of omega (:meth:`PeriodicSystem.grid_parts`)."""
+
+    fa: np.ndarray
+    fb: np.ndarray
+    fc: np.ndarray
+    fd: np.ndarray
+    sa: np.ndarray
+    sb: np.ndarray
+    sda: np.ndarray
+    sdb: np.ndarray
+
+    def forcing(self, omega):
+        return self.fa + self.fb / omega + omega * self.fc + omega * omega * self.fd
+
+    def coords(self, omega):
+        """(s_e, s_e') exogenous parts of the element coordinates."""
+        return self.sa + self.sb / omega, self.sda + omega * self.sdb
 
 
 class PeriodicSystem:
@@ -54,6 +77,9 @@ class PeriodicSystem:
         self.ge = [np.asarray(x, float) for x in p.ge]
         self.Pfull = p.P
         self.eps = float(regularisation)
+        ne, nel = p.ne, len(self.elements)
+        self.Gf = np.array(self.gf, float).reshape(nel, self.n)     # element directions, stacked
+        self.Ge = np.array(self.ge, float).reshape(nel, ne)
 
     @property
     def smooth_ok(self) -> bool:
@@ -83,6 +109,9 @@ class PeriodicSystem:
         e, ed, edd = self.exo(t, omega)
         xc, xcd, xcdd = self.Pc @ e, self.Pc @ ed, self.Pc @ edd
         f = -(self.Kfc @ xc + self.Cfc @ xcd + self.Mfc @ xcdd) + self.Fx @ e
+        if not self.ge:                   # a linear model: no element coordinates
+            m = e.shape[1] if e.ndim > 1 else 1
+            return f, np.zeros((0, m)), np.zeros((0, m))
         se = np.array([ge @ e for ge in self.ge]).reshape(len(self.ge), -1)
         sde = np.array([ge @ ed for ge in self.ge]).reshape(len(self.ge), -1)
         return f, se, sde
@@ -112,7 +141,9 @@ class PeriodicSystem:
 
     def element_series(self, t, q, v, omega):
         """Element forces along s (n_el, m) and coordinates s (n_el, m) at given states."""
-        f, se, sde = self.forcing(t, omega)
+        e, ed, _ = self.exo(t, omega)
+        se = np.array([ge @ e for ge in self.ge]).reshape(len(self.ge), -1)
+        sde = np.array([ge @ ed for ge in self.ge]).reshape(len(self.ge), -1)
         out, ss = [], []
         for i in range(len(self.elements)):
             s = self.gf[i] @ q + se[i]
@@ -120,6 +151,35 @@ class PeriodicSystem:
             out.append(self.element_force(i, s, sd)[0])
             ss.append(s)
         return np.array(out).reshape(len(self.elements), -1), np.array(ss).reshape(len(self.elements), -1)
+
+    def element_laws(self, S, Sd):
+        """(F, dF/ds, dF/ds') of every element at coordinates ``S``, ``Sd`` (n_el, ...) at once."""
+        F, dFs, dFv = np.empty_like(S), np.empty_like(S), np.empty_like(S)
+        for i, el in enumerate(self.elements):
+            F[i], dFs[i], dFv[i] = el.smooth_force(S[i], Sd[i], self.eps)
+        return F, dFs, dFv
+
+    def grid_parts(self, theta, nu: int = 1) -> "GridParts":
+        """The exogenous terms on a grid of phases ``theta`` of the period ``nu 2 pi / omega``
+        (t = nu theta / omega), split by their power of omega so one grid serves every frequency:
+        ``f = fa + fb / w + w fc + w^2 fd`` (the linear right-hand side of the module docstring),
+        ``s_e = sa + sb / w`` and ``s_e' = sda + w sdb`` (the elements' exogenous coordinates).
+        Exact: e = [1, t, sin w t, cos w t] with w t = nu theta."""
+        th = np.asarray(theta, float)
+        ne = self.problem.ne
+        E0, Et, Ed0, Ed1, Edd2 = (np.zeros((ne, th.size)) for _ in range(5))
+        E0[0] = 1.0
+        Et[1] = nu * th
+        Ed0[1] = 1.0
+        if ne > 2:
+            sn, cs = np.sin(nu * th), np.cos(nu * th)
+            E0[2], E0[3] = sn, cs
+            Ed1[2], Ed1[3] = cs, -sn
+            Edd2[2], Edd2[3] = -sn, -cs
+        KP, CP, MP = self.Kfc @ self.Pc, self.Cfc @ self.Pc, self.Mfc @ self.Pc
+        lin0 = self.Fx - KP
+        return GridParts(fa=lin0 @ E0 - CP @ Ed0, fb=lin0 @ Et, fc=-CP @ Ed1, fd=-MP @ Edd2,
+                         sa=self.Ge @ E0, sb=self.Ge @ Et, sda=self.Ge @ Ed0, sdb=self.Ge @ Ed1)
 
     def ode(self, omega):
         """First-order right-hand side y' = fun(t, y) (y = [q, v]) of the smooth/penalty model."""
