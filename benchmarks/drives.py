@@ -14,21 +14,30 @@ in the same run:
 Solve times exclude the assembly (timed separately, added to both sides in the second
 ratio).  Also printed: agreement with the regular-structure closed form (10.36)/(10.16),
 and the continuum pseudo-medium's error against the discrete model (the O(1/n) gap of
-§10.5).  Medians of ``--repeat`` runs after a warm-up call (5x as many for the millisecond
-paths).
+section 10.5).
 
-    python benchmarks/drives.py [--n 1000] [--repeat 5]
+Timing (benchmarks/common.py): all paths interleaved round by round, ``--runs`` rounds after a
+warm-up call, median and spread, wall and process-CPU time.  The millisecond paths are timed as
+blocks of 5 consecutive calls after one untimed call (their median per block; steady state like
+timeit: the first call after the dense solve meets cold caches, 8 ms against 4.5 ms for the
+seeded solve).  The dense baseline runs with 1 BLAS thread and with one per CPU
+(threadpoolctl); the faster median is the baseline (on a loaded machine the multi-threaded
+LAPACK call is many times slower; on a quiet one it is the faster), and the CPU-time ratio uses
+the 1-thread run (CPU time of a multi-threaded call counts every thread).
+
+    python benchmarks/drives.py [--n 1000] [--runs 5]
 """
 from __future__ import annotations
 
 import argparse
-import statistics
+import os
 import sys
-import time
 from pathlib import Path
 
-import numpy as np
-import scipy.linalg as sla
+import common
+
+import numpy as np  # noqa: E402
+import scipy.linalg as sla  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
@@ -39,19 +48,7 @@ from fem.drives.discrete import build_discrete  # noqa: E402
 from fem.drives.tm import build_chain  # noqa: E402
 from discrete.linear.modal import modal_analysis  # noqa: E402
 
-
-def median_time(fn, repeat: int):
-    """(median, result) of ``repeat`` consecutive calls after one warm-up call, as
-    benchmarks/modal_scaling.py does (steady state, like timeit).  A first call after other
-    large work is slower for the millisecond paths (measured: the seeded solve 8 ms cold
-    against 4.5 ms warm: fresh pages for its temporaries, cold caches)."""
-    out = fn()
-    times = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), out
+TARGET = 100.0
 
 
 def drive(n: int) -> DriveModel:
@@ -62,43 +59,60 @@ def drive(n: int) -> DriveModel:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=1000)
     ap.add_argument("--modes", type=int, default=20)
-    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--runs", type=int, default=5)
     a = ap.parse_args(argv)
+    common.header(__file__, f"drive with n = {a.n} mechanisms, lowest {a.modes} natural frequencies")
     model = drive(a.n)
     k = a.modes
     system = build_discrete(model).system
     K, M = system.free_block(system.K).toarray(), system.free_block(system.M).toarray()
+    nthreads = os.cpu_count() or 1
+
+    def dense(threads):
+        def f():
+            with common.blas_threads(threads):
+                return np.sqrt(sla.eigh(K, M, subset_by_index=[0, k - 1])[0])
+        return f
+
     methods = {
-        "assembly": lambda: build_discrete(model).system,
-        "dense": lambda: np.sqrt(sla.eigh(K, M, subset_by_index=[0, k - 1])[0]),
-        "seeded": lambda: fe_modes(model, system, k),
-        "lanczos": lambda: modal_analysis(system, k),
+        "assembly": common.steady(lambda: build_discrete(model).system),
+        "dense, 1 BLAS thread": dense(1),
+        f"dense, {nthreads} BLAS threads": dense(nthreads),
+        "seeded": common.steady(lambda: fe_modes(model, system, k)),
+        "lanczos": common.steady(lambda: modal_analysis(system, k)),
         "tm": lambda: natural_frequencies(build_chain(model)[0], k, p_guess=150.0),
     }
-    fast = {"assembly", "seeded", "lanczos"}     # millisecond paths: more repetitions, same protocol
-    med, out = {}, {}
-    for name, fn in methods.items():
-        med[name], out[name] = median_time(fn, 5 * a.repeat if name in fast else a.repeat)
-    w_dense, seeded, lanczos, tm = out["dense"], out["seeded"], out["lanczos"], out["tm"]
-    ratio, ratio_asm = med["dense"] / med["seeded"], (med["dense"] + med["assembly"]) / (med["seeded"] + med["assembly"])
-    print(f"drive: n = {a.n} mechanisms ({system.n_free} DOFs), lowest {k} natural frequencies; "
-          f"medians of {a.repeat} runs ({5 * a.repeat} for the millisecond paths) after a warm-up")
-    print(f"  assembly (scikit-fem-free lumped builder)  {med['assembly'] * 1e3:9.2f} ms")
-    print(f"  dense eigh, lowest {k} (baseline)          {med['dense'] * 1e3:9.2f} ms")
-    print(f"  sparse FE, seeded + certified            {med['seeded'] * 1e3:9.2f} ms   speed-up vs dense {ratio:7.1f}x "
-          f"(target >= 100x: {'met' if ratio >= 100 else 'NOT met'}); with assembly on both sides {ratio_asm:.1f}x")
+    if nthreads == 1:
+        methods.pop(f"dense, {nthreads} BLAS threads")
+    tm = common.interleaved(methods, runs=a.runs, warmup=1)
+    dense_names = [m for m in methods if m.startswith("dense")]
+    best = min(dense_names, key=lambda m: tm[m].wall_stats.median)
+    base = tm[best]
+    med = {name: t.wall_stats.median for name, t in tm.items()}
+    seeded, lanczos, tmr, w_dense = tm["seeded"].result, tm["lanczos"].result, tm["tm"].result, base.result
+    ratio = med[best] / med["seeded"]
+    ratio_cpu = tm["dense, 1 BLAS thread"].cpu_stats.median / tm["seeded"].cpu_stats.median
+    ratio_asm = (med[best] + med["assembly"]) / (med["seeded"] + med["assembly"])
+    print(f"drive: n = {a.n} mechanisms ({system.n_free} DOFs), lowest {k} natural frequencies; {a.runs} interleaved "
+          f"runs after a warm-up (millisecond paths: median of 5 consecutive calls per run)")
+    for name, t in tm.items():
+        print(f"  {name:<24} {t.line(1e3, 'ms')}")
+    print(f"  baseline: {best} (the faster of the dense runs)")
+    print(f"  sparse FE, seeded + certified: speed-up vs dense {ratio:7.1f}x wall, {ratio_cpu:.1f}x cpu (1-thread "
+          f"dense) (target >= {TARGET:g}x: {'met' if ratio >= TARGET else 'NOT met'}); with assembly on both sides "
+          f"{ratio_asm:.1f}x")
     print(f"      {seeded.method}")
-    print(f"  sparse FE, plain shift-invert Lanczos    {med['lanczos'] * 1e3:9.2f} ms   speed-up vs dense "
-          f"{med['dense'] / med['lanczos']:7.1f}x (the crowd below k slows Lanczos)")
-    print(f"  transfer-matrix root finding             {med['tm'] * 1e3:9.2f} ms   speed-up vs dense "
-          f"{med['dense'] / med['tm']:7.1f}x ({tm.evaluations} count sweeps)")
+    print(f"  sparse FE, plain shift-invert Lanczos: speed-up vs dense {med[best] / med['lanczos']:7.1f}x "
+          f"(the crowd below k slows Lanczos)")
+    print(f"  transfer-matrix root finding: speed-up vs dense {med[best] / med['tm']:7.1f}x ({tmr.evaluations} count "
+          f"sweeps)")
     exact = regular_of(model).natural_frequencies()[:k]
-    rel = lambda w: float(np.max(np.abs(w / exact - 1)))
+    rel = lambda w: float(np.max(np.abs(w / exact - 1)))  # noqa: E731
     print(f"  max rel. error against the closed form (10.36)/(10.16): seeded {rel(seeded.omega_rad_s):.1e}, "
-          f"Lanczos {rel(lanczos.omega_rad_s):.1e}, TM {rel(tm.omega_rad_s):.1e}, dense {rel(w_dense):.1e}; "
+          f"Lanczos {rel(lanczos.omega_rad_s):.1e}, TM {rel(tmr.omega_rad_s):.1e}, dense {rel(w_dense):.1e}; "
           f"seeded max residual {seeded.residuals.max():.1e}")
     print("  (dense eigh loses ~eps lam_max/lam ~ 1e-9 on the lowest mode; the iterative paths resolve it)")
     lo, hi = continuum_roots(model, 3)
@@ -109,7 +123,16 @@ def main(argv=None) -> int:
     up = natural_frequencies(chain, p_range=(300.0 * 1.5, hi[0] * 1.01)).omega_rad_s[0]
     print(f"  continuum (10.50) vs discrete, upper branch r = 1: {hi[0]:.4f}/{up:.4f} ({hi[0] / up - 1:+.2e}); "
           f"O(1/n) gap ~ 0.045/n = {0.045 / a.n:.1e}")
-    return 0
+    rec = common.record(
+        __file__, f"drive, n = {a.n} mechanisms ({system.n_free} DOFs), lowest {k} frequencies, solve only",
+        "sparse FE, seeded + certified", f"dense eigh ({best.split(', ')[1]})", ratio, (">=", TARGET),
+        ratio_cpu=ratio_cpu, accuracy="max rel. error vs closed form (10.36)", accuracy_package=rel(seeded.omega_rad_s),
+        accuracy_baseline=rel(w_dense), runs=a.runs,
+        spread={"package": tm["seeded"].spread_dict(), "baseline": base.spread_dict()})
+    print()
+    common.print_summary(rec)
+    common.emit(rec)
+    return 0 if rec["met"] else 1
 
 
 if __name__ == "__main__":
