@@ -9,7 +9,7 @@ export PYVISTA_OFF_SCREEN := true
 export VTK_DEFAULT_OPENGL_WINDOW := vtkOSOpenGLRenderWindow
 export MPLBACKEND := Agg
 
-.PHONY: demo test test-slow validate bench system-deps clean
+.PHONY: demo test test-slow validate bench fuzz system-deps clean
 
 system-deps:
 	@if ldconfig -p 2>/dev/null | grep -q libOSMesa; then :; \
@@ -38,11 +38,11 @@ test-slow: system-deps $(STAMP)
 validate: system-deps $(STAMP)
 	$(BIN)/drivefem validate --report validation-report
 
-bench: $(STAMP)
-	$(BIN)/python benchmarks/modal_scaling.py
-	$(BIN)/python benchmarks/stick_slip.py
-	$(BIN)/python benchmarks/drives.py
-	$(BIN)/python benchmarks/render.py
+bench: system-deps $(STAMP)
+	$(BIN)/python benchmarks/report.py
+
+fuzz: $(STAMP)
+	$(BIN)/python -m tests.fuzzing.run --n 3000 --out fuzz-report
 
 clean:
-	rm -rf $(VENV) drivefem-demo validation-report .pytest_cache build *.egg-info
+	rm -rf $(VENV) drivefem-demo validation-report fuzz-report .pytest_cache build *.egg-info

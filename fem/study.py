@@ -6,7 +6,8 @@ the sweeps and the validation catalogue go through (design.md §9).
 
 Kinds: ``fe`` (linear analyses of a shaft), ``lumped`` and ``hybrid`` (linear analyses, time
 simulation by the event-driven, Moreau-Jean or regularised integrator, nonlinear steady states),
-``drive`` (a drive of regular structure by three representations).
+``drive`` (a drive of regular structure by three representations), ``rotor`` (complex modes at a
+speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.rotor`).
 """
 from __future__ import annotations
 
@@ -24,6 +25,7 @@ from .modelfile.build import fe as build_fe
 from .modelfile.build import hybrid as build_hybrid
 from .modelfile.build import linear as build_linear
 from .modelfile.build import lumped as build_lumped
+from .modelfile.build import rotor as build_rotor
 from .modelfile.build.steady import steady_settings
 from .modelfile.load import kind_of
 from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
@@ -102,6 +104,28 @@ class Study:
         self._need("drive", what="a drive of regular structure")
         return build_drive.drive_model(self.doc)
 
+    @cached_property
+    def rotor(self):
+        """The assembled rotor (:class:`fem.rotor.RotorSystem`) of a rotor file."""
+        from .rotor import assemble_rotor
+
+        self._need("rotor", what="a rotor")
+        return assemble_rotor(build_rotor.rotor_model(self.doc))
+
+    def campbell(self, n_modes: int | None = None):
+        """Rotor files: the Campbell diagram of [campbell] with its critical speeds."""
+        from .rotor import campbell
+
+        self._need("rotor", what="drivefem campbell")
+        t = self.doc.campbell
+        if t is None:
+            raise ModelError("model file (rotor)", "campbell", None, "a table [campbell] with speeds = [..] or "
+                             "speeds_rpm = { start, stop, points } (required for drivefem campbell)")
+        speeds = build_rotor.speed_grid(t, "[campbell]")
+        tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+        return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
+                        critical=t.critical, tolerance=tol)
+
     def linear_system(self):
         """The linear part: FE assembled, lumped with gears eliminated, hybrid compiled."""
         if self.kind == "fe":
@@ -110,6 +134,8 @@ class Study:
             return self._lumped_system
         if self.kind == "hybrid":
             return self.compiled.system
+        if self.kind == "rotor":            # M q'' + (C + Omega G) q' + K q = f at the [analysis] speed
+            return self.rotor.system_at(build_rotor.modal_speed(self.doc))
         raise ModelError("model file (drive)", "drive", "...", "the drive analyses (modal, forced, compare)")
 
     @cached_property
@@ -142,6 +168,12 @@ class Study:
 
             self._drive_delta()
             return drive_modal(self.drive, self.modal_count(n_modes))
+        if self.kind == "rotor":
+            from .rotor import rotor_modes
+
+            tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+            return rotor_modes(self.rotor, build_rotor.modal_speed(self.doc),
+                               build_rotor.modes_count(self.doc, None, n_modes), tolerance=tol)
         from discrete.linear import modal_analysis
 
         an = self.analysis
@@ -159,9 +191,17 @@ class Study:
         point of the continuation), or the drive's response."""
         an = self.analysis
         if self.is_steady():
+            from discrete.linalg import single_threaded_blas
             from discrete.steady import afc
 
-            return afc(self.steady_model(), progress)
+            with single_threaded_blas():     # small dense kernels: BLAS threads only add contention
+                return afc(self.steady_model(), progress)
+        if self.kind == "rotor":
+            from .rotor import unbalance_response
+
+            spec = build_rotor.response_spec(self.doc)
+            return unbalance_response(self.rotor, spec.unbalances, spec.speeds, probes=spec.probes,
+                                      operating_range=spec.operating_range, find_peaks=spec.find_peaks)
         if not isinstance(an, ForcedAnalysis):
             raise ModelError("[analysis]", "type", getattr(an, "type", None), "'forced' for drivefem forced")
         if self.kind == "drive":

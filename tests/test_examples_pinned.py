@@ -14,7 +14,13 @@ EXAMPLES = ROOT / "examples"
 CASES = ROOT / "validation" / "cases"
 
 PINNED = {
+    "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown"],
+    "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown"],
+    "hybrid_sweep_vibro_impact.toml": ["hybrid_afc_vibro_impact"],
     "beam_base_excitation.toml": ["base-motion-modal-vs-direct"],
+    "parametric_drive.toml": ["parametric_model_file"],
+    "cam_clearance.toml": ["timedomain_cam_follower", "timedomain_cam_clearance"],
+    "motor_runup.toml": ["timedomain_motor_runup"],
     "discrete_bouncing_ball.toml": ["discrete_impact_ball"],
     "discrete_ch8_quasi_harmonic.toml": ["discrete_ch8_quasi_harmonic"],
     "discrete_ch8_relaxation.toml": ["discrete_ch8_relaxation", "discrete_ch8_critical_speed"],

@@ -80,8 +80,10 @@ def main():
 '''
 
 
-def test_harness_detects_each_failure_class(tmp_path):
-    """A stand-in CLI that fails in every way the fuzzer must catch: each run gets the right class."""
+@pytest.mark.parametrize("fork", [True, False], ids=["forked", "fresh-interpreter"])
+def test_harness_detects_each_failure_class(tmp_path, fork):
+    """A stand-in CLI that fails in every way the fuzzer must catch: each run gets the right class
+    (runs forked from the fork server, and runs in a fresh interpreter each)."""
     root = tmp_path / "src"
     root.mkdir()
     (root / "pyproject.toml").write_text('[project]\nname = "x"\n[project.scripts]\ndrivefem = "fakecli:main"\n')
@@ -90,7 +92,7 @@ def test_harness_detects_each_failure_class(tmp_path):
                 "overflow": "NONFINITE", "truncated": "BADJSON", "unnamed": "BADMESSAGE", "named": "OK"}
     jobs = [Job(Mutation(f"fake/test/-/{word}", "fake", "test", word, data=f"x = '{word}'\n".encode(),
                          names=("E", "material")), "modal") for word in expected]
-    run = execute(jobs, root=root, limit_s=3.0, out_dir=tmp_path / "out", progress=False)
+    run = execute(jobs, root=root, limit_s=3.0, out_dir=tmp_path / "out", progress=False, fork=fork)
     got = {o.id.split("/")[-1]: o.cls for o in run.outcomes}
     assert got == expected
     nan = next(o for o in run.outcomes if o.id.endswith("/nan"))

@@ -252,7 +252,9 @@ def _eigsh(K, M, k, sigma, lu, tol=0.0):
 
 def _shift_invert(K, M, k, shift, lam_max, rigid_level, n_rigid):
     if k >= K.shape[0]:
-        raise ModelError("[analysis]", "modes", k, f"fewer than {K.shape[0]} for the sparse solver")
+        raise ModelError("[analysis]", "modes", k, f"at most {K.shape[0] - 1} (the {K.shape[0]} DOFs less one) for the "
+                         "sparse shift-invert solver, which small models use only when their mass matrix is nearly "
+                         "singular (smallest / largest eigenvalue of M below 1e-8)")
     if shift is not None:
         lu = _factor(K - shift * M)
         if lu is None:

@@ -67,13 +67,19 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--quiet", action="store_true", help="no progress bar")
     v.set_defaults(func=commands.validate)
     k = sub.add_parser("schema", help="print the JSON Schema of model files (for editors: Taplo, Even Better TOML)")
-    k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive"],
+    k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive", "rotor"],
                    help="one kind of model file (default: any model file)")
     k.add_argument("--out", help="write the schema to this file")
     k.set_defaults(func=commands.schema)
     d = sub.add_parser("demo", help="run representative examples end to end into ./drivefem-demo/")
     d.add_argument("--out", default="drivefem-demo")
     d.set_defaults(func=commands.demo)
+    from . import parametric as parametric_command
+
+    parametric_command.add_parser(sub)
+    from . import rotor as rotor_command
+
+    rotor_command.add_parser(sub)          # drivefem campbell; modal and forced of [rotor] files
     return p
 
 

@@ -21,6 +21,36 @@ def _command(path: Path) -> tuple[str, object]:
     return (an.type if an is not None else "modal"), doc
 
 
+def _python_examples(out: Path):
+    """Run every examples/*.py through its ``main(out)`` (a directory for ``out_dir``, else a file
+    named after the example, with the suffix of the default output): (name, exit code, seconds)."""
+    import importlib.util
+    import inspect
+    import traceback
+
+    out.mkdir(parents=True, exist_ok=True)
+    for path in sorted(EXAMPLES.glob("*.py")):
+        spec = importlib.util.spec_from_file_location(f"drivefem_example_{path.stem}", path)
+        module = importlib.util.module_from_spec(spec)
+        t0 = time.perf_counter()
+        try:
+            spec.loader.exec_module(module)
+            first = next(iter(inspect.signature(module.main).parameters.values()))
+            if first.name == "out_dir":
+                target = out / path.stem
+            else:
+                default = first.default if isinstance(first.default, (str, Path)) else ""
+                target = out / (path.stem + (Path(str(default)).suffix or ".json"))
+            print(f"$ python {path.relative_to(EXAMPLES.parent)}  (main({target}))")
+            module.main(target)
+            rc = 0
+        except Exception:            # an example that fails is reported, the demo goes on
+            traceback.print_exc()
+            rc = 1
+        yield path.name, rc, time.perf_counter() - t0
+        print()
+
+
 def run_demo(out: Path) -> int:
     from . import cli
 
@@ -36,11 +66,15 @@ def run_demo(out: Path) -> int:
             continue
         t0 = time.perf_counter()
         argv = [kind, str(path), "--json", f"{stem}.json"]
-        if kind == "modal":
+        if kind == "modal" and hasattr(doc, "rotor"):
+            argv += ["--plot", f"{stem}_orbits.png"]
+        elif kind == "modal":
             argv += ["--plot", f"{stem}_modes.png", "--vtu", f"{stem}_modes.vtu"] if hasattr(doc, "segment") \
                 and not hasattr(doc, "reduction") else []
         elif kind == "forced":
             argv += ["--csv", f"{stem}.csv", "--plot", f"{stem}_frf.png"]
+        elif kind in ("parametric", "campbell"):
+            argv += ["--csv", f"{stem}.csv", "--png", f"{stem}_{kind}.png"]
         else:
             argv += ["--csv", f"{stem}.csv", "--png", str(out / f"{path.stem}_plots")]
         print(f"$ drivefem {' '.join(argv)}")
@@ -57,6 +91,9 @@ def run_demo(out: Path) -> int:
         failures += rc != 0
         summary.append((name, "render", rc, 0.0))
         print()
+    for name, rc, dt in _python_examples(out / "python"):
+        failures += rc != 0
+        summary.append((name, "python", rc, dt))
     print("$ drivefem validate --fast --report", out / "validation")
     rc = cli.main(["validate", "--fast", "--quiet", "--report", str(out / "validation"),
                    "--json", str(out / "validation" / "validation.json")])

@@ -50,8 +50,11 @@ MAX_POINTS = 100_000
 # ------------------------------------------------------------------ definition
 def _axis(spec) -> list:
     """The values of one grid axis: a list as given, or { start, stop, points, spacing }."""
+    from ..modelfile.budget import check_count
+
     if isinstance(spec, list):
         return list(spec)
+    check_count("[sweep]", "points", spec.points, MAX_POINTS, "points", spec.points)
     f = np.geomspace if spec.spacing == "log" else np.linspace
     return [float(x) for x in f(spec.start, spec.stop, spec.points)]
 
@@ -117,9 +120,9 @@ def parse_sweep(doc: dict) -> dict:
     base = {k: v for k, v in doc.items() if k != "sweep"}
     for path in dict.fromkeys(k for pt in pts for k in pt):
         _locate(copy.deepcopy(base), path)
-    for pt in pts:
-        _point_study(base, pt, sw.analysis)
-    return {"analysis": sw.analysis, "points": pts, "periods": sw.periods}
+    studies = [_point_study(base, pt, sw.analysis) for pt in pts]
+    return {"analysis": sw.analysis, "points": pts, "periods": sw.periods,
+            "title": studies[0].title if studies else "", "kind": studies[0].kind if studies else None}
 
 
 def _point_study(base: dict, values: dict, analysis: str):
@@ -375,6 +378,8 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     if json_path:
         from ..output import payload, write_json
 
-        write_json(json_path, payload("sweep", None, summary))
+        from types import SimpleNamespace
+
+        write_json(json_path, payload("sweep", SimpleNamespace(title=spec["title"], kind=spec["kind"]), summary))
     print(f"sweep: {n - len(bad)} of {n} points ok" + (f", {len(bad)} failed" if bad else ""), file=stream)
     return 1 if bad else 0

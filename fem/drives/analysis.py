@@ -314,7 +314,8 @@ def forced(model: DriveModel, omegas, representation: str | None = None, delta: 
                   "values at the stations interpolated")
     ref, ref_name = None, ""
     reg = regular_of(model)
-    if delta == 0 and model.mechanism.output == "free":
+    if delta == 0 and model.mechanism.output == "free" and np.all(np.asarray(omegas) > 0):
+        # (10.40)-(10.46) and the pseudo-medium form divide by w^2: no reference at w = 0 (a static load)
         if rep != "continuum" and reg is not None and model.boundary in ("clamped-free", "clamped-clamped"):
             ref = np.array([reg.forced_amplitudes(w, model.force) for w in omegas])
             ref_name = "corrected closed form of (10.40)-(10.46) (regular structure)"

@@ -58,6 +58,10 @@ def check_document(doc, kind: str) -> None:
         n = doc.drive.n
         conv = getattr(doc.analysis, "convergence_n", None) or []
         check_count("[drive]", "n", max([n] + list(conv)), MAX_DRIVE_N, "mechanisms", n)
+        co = getattr(doc.drive, "continuum", None)
+        if co is not None:
+            check_count("[drive.continuum]", "elements", 2 * co.order * co.elements, MAX_FE_DOFS,
+                        "FE unknowns of the pseudo-medium", co.elements)
     an = doc.analysis
     if an is not None and an.modes is not None:
         check_count("[analysis]", "modes", an.modes, MAX_MODES, "modes")

@@ -13,6 +13,17 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   curve, whose amplitude is its response measure), ``method``, ``damping``, ``warnings``; the
   nonlinear curve (``steady``) adds ``stable``, ``max_multiplier``, ``folds``, ``reason``, ...
 * simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...
+* parametric: the stability chart -- ``depth`` (n_depth), ``omega_rad_s`` and ``omega_ratio`` (Omega /
+  omega_1, n_omega), ``rho_max``, ``stable``, ``growth_rate_1_s``, ``error_estimate``,
+  ``liouville_residual`` (n_depth x n_omega), ``natural_omega_rad_s``, ``centres``, ``thresholds``,
+  ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
+* rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
+  ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
+  shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per
+  probe, ``peaks`` (AF, separation margins) and ``orbit_major`` (n_speeds x n_nodes); campbell:
+  ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``, ``natural_frequency_rad_s``, ``log_decrement``,
+  ``damping_ratio``, ``whirl`` (n_modes x n_speeds), ``kind_of_mode``, ``mac_min``, ``residual_max``,
+  ``orders``, ``critical_speeds``, ``warnings``.
 Complex numbers are ``{"re": .., "im": ..}``; no number is NaN or infinite.
 """
 from __future__ import annotations
@@ -34,6 +45,8 @@ def modal_data(study, res) -> dict:
     """Modal keys for FE, lumped, hybrid (ModalResult) and drive (DriveModalResult) results."""
     if study.kind == "drive":
         return _drive_modal(res)
+    if study.kind == "rotor":
+        return _rotor_modal(study, res)
     d = res.to_dict()
     ok = res.reliable | res.rigid
     d["omega_rad_s"] = [v if r else None for v, r in zip(res.omega_rad_s.tolist(), ok)]
@@ -86,6 +99,8 @@ def forced_data(study, res) -> dict:
         d["steady"] = True
         d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
         return d
+    if study.kind == "rotor":
+        return _rotor_forced(res)
     if study.kind == "drive":
         d = res.to_dict()
         Z = np.concatenate([res.theta, res.y], axis=1).T            # (2n, n_freq)
@@ -112,4 +127,57 @@ def forced_data(study, res) -> dict:
 def simulate_data(study, res) -> dict:
     d = res.to_dict()
     d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
+    return d
+
+
+# ------------------------------------------------------------------ parametric
+def parametric_data(study, spec, chart) -> dict:
+    """The stability chart of ``drivefem parametric`` (a :class:`StabilityChart` and its file spec)."""
+    d = chart.to_dict()
+    d["omega_ratio"] = (chart.omega_rad_s / chart.natural_omega_rad_s[0]).tolist()
+    d["omega_grid_unit"] = spec.omega_unit
+    d["parts"] = list(spec.parts)
+    return d
+
+
+# ------------------------------------------------------------------ rotor files
+def _rotor_modal(study, res) -> dict:
+    """Complex modes at a speed (:class:`fem.rotor.RotorModes`) in the modal contract's shape."""
+    d = res.to_dict()
+    ok = res.reliable | res.rigid
+    n = res.n_modes
+    d["omega_rad_s_unverified"] = d["omega_rad_s"]
+    d["omega_rad_s"] = [v if r else None for v, r in zip(d["omega_rad_s"], ok)]
+    d["frequencies_hz"] = [v if r else None for v, r in zip(d["frequencies_hz"], ok)]
+    d["eigenvalues"] = res.eigenvalues
+    d.pop("eigenvalues_real", None)
+    d.pop("eigenvalues_imag", None)
+    d["kind_of_mode"] = d.pop("kind")
+    d["rayleigh_rel_diff"] = [None] * n
+    d["precision_bound"] = [None] * n
+    d["speed_rpm"] = res.speed_rad_s * 30.0 / np.pi
+    rs = study.rotor
+    d["mode_shapes"] = {"x": res.node_x, "v": res.shapes[rs.node_dofs["v"]].T, "w": res.shapes[rs.node_dofs["w"]].T}
+    return d
+
+
+def _rotor_forced(res) -> dict:
+    """Unbalance response (:class:`fem.rotor.UnbalanceResponse`): the speeds are the forcing frequencies."""
+    d = res.to_dict()
+    probes = d.pop("probes")
+    w = res.speeds_rad_s
+    d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi),
+              "outputs": [f"{p['direction']}@x={p['x']:g}" for p in probes],
+              "amplitude": [p["amplitude"] for p in probes], "phase_lag_deg": [p["phase_lag_deg"] for p in probes],
+              "response": [pr.value for pr in res.probes], "probes": [{"x": p["x"], "direction": p["direction"]}
+                                                                     for p in probes],
+              "damping": "bearing and seal coefficients (no global damping)", "steady": False})
+    return d
+
+
+def campbell_data(study, camp) -> dict:
+    """The Campbell diagram of ``drivefem campbell`` (:class:`fem.rotor.CampbellResult`)."""
+    d = camp.to_dict()
+    d["kind_of_mode"] = d.pop("kind")          # "kind" is the file's kind in every document
+    d["n_dofs"] = study.rotor.n_dofs - int(study.rotor.constrained.size)
     return d

@@ -13,7 +13,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-COMMANDS = ("modal", "forced", "simulate", "compare", "sweep", "render")
+COMMANDS = ("modal", "forced", "simulate", "compare", "sweep", "render", "parametric", "campbell")
 
 #: Commands that apply to each kind of model file (the first one is the file's main command).
 APPLICABLE = {
@@ -27,6 +27,10 @@ APPLICABLE = {
     "sweep": ("sweep", "forced"),
     "drive_modal": ("modal", "compare"),
     "drive_forced": ("forced", "modal", "compare"),
+    "parametric": ("parametric", "modal"),
+    "rotor": ("modal", "campbell", "forced"),
+    "rotor_campbell": ("campbell", "modal", "forced"),
+    "rotor_forced": ("forced", "modal", "campbell"),
     "other": ("modal", "forced", "simulate"),
 }
 
@@ -38,6 +42,10 @@ def kind_of(doc: dict) -> str:
     """The kind of a parsed model file, from the tables it has."""
     atype = doc.get("analysis", {}).get("type") if isinstance(doc.get("analysis"), dict) else None
     forced = atype == "forced"
+    if "rotor" in doc:
+        return {"campbell": "rotor_campbell", "forced": "rotor_forced"}.get(atype, "rotor")
+    if atype == "parametric":
+        return "parametric"
     if "drive" in doc:
         return "drive_forced" if forced else "drive_modal"
     if "sweep" in doc:

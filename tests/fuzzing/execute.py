@@ -12,6 +12,7 @@ BLAS/OpenMP run single-threaded; the child is its own process group, killed whol
 """
 from __future__ import annotations
 
+import json
 import os
 import shlex
 import shutil
@@ -84,7 +85,7 @@ class Runner:
     """Runs jobs for one source tree ``root`` with ``python`` and a per-run ``limit_s``."""
 
     def __init__(self, root: Path, work: Path, limit_s: float = 60.0, python: str = sys.executable,
-                 memory_limit: int = MEMORY_LIMIT):
+                 memory_limit: int = MEMORY_LIMIT, fork: bool = True):
         self.root = Path(root).resolve()
         self.work = Path(work)
         self.work.mkdir(parents=True, exist_ok=True)
@@ -102,6 +103,9 @@ class Runner:
         self._active: set[subprocess.Popen] = set()
         self._lock = threading.Lock()
         self.stopped = False
+        self.fork = fork
+        self._local = threading.local()           # one fork server per worker thread
+        self._servers: list[subprocess.Popen] = []
 
     def kill_all(self) -> None:
         """Stop: kill the process group of every run in progress; no new run starts."""
@@ -109,6 +113,44 @@ class Runner:
             self.stopped = True
             for proc in list(self._active):
                 _kill_group(proc, reap=False)
+            for srv in self._servers:
+                _signal(srv.pid, signal.SIGTERM)      # it kills its current child's session
+
+    def close(self) -> None:
+        """Stop the fork servers."""
+        for srv in self._servers:
+            try:
+                srv.stdin.close()
+                srv.wait(timeout=5)
+            except Exception:
+                _kill_group(srv)
+        self._servers = []
+
+    def _server(self) -> subprocess.Popen:
+        """This thread's fork server (started on first use, restarted if it died)."""
+        srv = getattr(self._local, "server", None)
+        if srv is None or srv.poll() is not None:
+            srv = subprocess.Popen([self.python, "-P", str(Path(__file__).with_name("zygote.py")), self.module,
+                                    self.func], env=self.env, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                   stderr=subprocess.DEVNULL, text=True, bufsize=1, start_new_session=True)
+            if json.loads(srv.stdout.readline() or "{}").get("ready") is not True:
+                raise RuntimeError("the fuzzer's fork server did not start")
+            self._local.server = srv
+            with self._lock:
+                self._servers.append(srv)
+        return srv
+
+    def _run_forked(self, run_dir: Path, argv: list[str]) -> tuple[int | None, bool]:
+        """(exit code, timed out) of one run forked from this thread's fork server."""
+        srv = self._server()
+        srv.stdin.write(json.dumps({"dir": str(run_dir), "argv": argv, "limit": self.limit_s}) + "\n")
+        line = srv.stdout.readline()
+        if not line:                       # the server died (killed by a Ctrl-C of the fuzzer)
+            if self.stopped:
+                raise KeyboardInterrupt
+            raise RuntimeError("the fuzzer's fork server died")
+        out = json.loads(line)
+        return out["rc"], out["timed_out"]
 
     # ------------------------------------------------------------------ building a run
     def command_line(self, job: Job) -> tuple[list[str], list[str], list[tuple]]:
@@ -200,6 +242,11 @@ class Runner:
             self._prepare(run_dir, job, actions)
             out_f, err_f = run_dir / ".stdout", run_dir / ".stderr"
             t0 = time.monotonic()
+            if self.fork:
+                if self.stopped:
+                    raise KeyboardInterrupt
+                rc, timed_out = self._run_forked(run_dir, argv)
+                return self._collect(job, argv, setup, run_dir, rc, timed_out, time.monotonic() - t0)
             with open(out_f, "wb") as fo, open(err_f, "wb") as fe:
                 with self._lock:
                     if self.stopped:
@@ -222,18 +269,22 @@ class Runner:
                     _kill_group(proc)
                     with self._lock:
                         self._active.discard(proc)
-            duration = time.monotonic() - t0
-            raw_out, raw_err = out_f.read_bytes(), err_f.read_bytes()
-            traceback_seen = b"Traceback" in raw_out or b"Traceback" in raw_err
-            stdout, stderr = _tail(raw_out), _tail(raw_err)
-            jsons = {}
-            for p in sorted(run_dir.rglob("*.json")):
-                if p.is_file() and not p.is_symlink():
-                    jsons[str(p.relative_to(run_dir))] = p.read_bytes() if p.stat().st_size <= JSON_CAP else None
-            return RunResult(job, argv, setup, None if timed_out else rc, timed_out, duration, stdout, stderr,
-                             traceback_seen, jsons)
+            return self._collect(job, argv, setup, run_dir, rc, timed_out, time.monotonic() - t0)
         finally:
             self._cleanup(run_dir)
+
+    def _collect(self, job, argv, setup, run_dir: Path, rc, timed_out: bool, duration: float) -> RunResult:
+        out_f, err_f = run_dir / ".stdout", run_dir / ".stderr"
+        raw_out = out_f.read_bytes() if out_f.is_file() else b""
+        raw_err = err_f.read_bytes() if err_f.is_file() else b""
+        traceback_seen = b"Traceback" in raw_out or b"Traceback" in raw_err
+        stdout, stderr = _tail(raw_out), _tail(raw_err)
+        jsons = {}
+        for p in sorted(run_dir.rglob("*.json")):
+            if p.is_file() and not p.is_symlink():
+                jsons[str(p.relative_to(run_dir))] = p.read_bytes() if p.stat().st_size <= JSON_CAP else None
+        return RunResult(job, argv, setup, None if timed_out else rc, timed_out, duration, stdout, stderr,
+                         traceback_seen, jsons)
 
     def repro(self, job: Job, saved_model: Path | None) -> str:
         """A shell line that reproduces a run (the model file saved at ``saved_model``)."""

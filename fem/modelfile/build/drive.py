@@ -1,6 +1,8 @@
 """``[drive]`` -> :class:`fem.drives.DriveModel` (a drive of regular structure, textbook ch. 10)."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ...drives.model import DistributedShaft, DriveModel, LumpedShaft, Mechanism
 from ..schema import drive as S
 
@@ -21,5 +23,5 @@ def drive_model(doc) -> DriveModel:
                        force=d.load.force if d.load is not None else 0.0, continuum_elements=co.elements,
                        continuum_order=co.order, title=doc.title)
     if co.length is not None:            # the file gives the whole length; the model keeps it per segment
-        model.continuum_length = co.length / model.n_segments
+        model = replace(model, continuum_length=co.length / model.n_segments)
     return model

@@ -7,7 +7,9 @@ Kinds (decided once, from the tables present, by :func:`detect_kind`):
   elements, time simulation and nonlinear steady states;
 * ``hybrid``: FE segments plus lumped bodies and nonsmooth elements (``[[segment]]`` with any
   element, body, driver, force, ``[reduction]`` or ``[simulation]``);
-* ``drive``: a drive of regular structure (``[drive]``).
+* ``drive``: a drive of regular structure (``[drive]``);
+* ``rotor``: a spinning shaft line on bearings (``[rotor]``) with complex modes, Campbell diagram
+  and unbalance response.
 """
 from __future__ import annotations
 
@@ -23,6 +25,7 @@ from .drive import Drive
 from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
+from .rotor import CampbellTable, RotorAnalysis, RotorTable, UnbalanceResponseTable, UnbalanceTable
 from .simulation import Constants, Initial, Reduction, Simulation
 from .steady import Steady, Sweep
 
@@ -163,13 +166,30 @@ class DriveFile(ModelFileBase, LinearTables):
     """[drive]: n identical mechanisms on a main shaft."""
 
 
-KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile}
+class RotorFile(ModelFileBase):
+    """A rotor: a spinning shaft line with discs and bearings; complex modes, Campbell diagram, unbalance response."""
+
+    rotor: RotorTable
+    """[rotor]: shaft segments, discs, bearings, pedestals, couplings, supports."""
+    analysis: RotorAnalysis | None = None
+    """[analysis]: the default command (type) and the complex modal analysis at a speed."""
+    campbell: CampbellTable | None = None
+    """[campbell]: speeds, modes and orders of the Campbell diagram (drivefem campbell)."""
+    unbalance_response: UnbalanceResponseTable | None = None
+    """[unbalance_response]: speeds and probes of the unbalance response (drivefem forced)."""
+    unbalance: _array(UnbalanceTable)
+    """[[unbalance]]: mass unbalances (drivefem forced)."""
+
+
+KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
 HYBRID_MARKERS = ("body", "driver", "spring", "damper", "friction", "one_sided", "gap", "impact", "cubic_spring",
-                  "force", "distributed_friction", "reduction", "initial", "simulation", "steady", "sweep")
+                  "force", "contact", "motor", "distributed_friction", "reduction", "initial", "simulation", "steady", "sweep")
 
 
 def detect_kind(doc: dict) -> str:
     """The kind of a parsed model file, from the tables it has (decided once)."""
+    if "rotor" in doc:
+        return "rotor"
     if "drive" in doc:
         return "drive"
     if "segment" in doc:
@@ -177,7 +197,7 @@ def detect_kind(doc: dict) -> str:
     if "body" in doc or "driver" in doc:
         return "lumped"
     raise ModelError("model file", "segment", None, "at least one [[segment]] (FE or hybrid model), [[body]] "
-                     "(lumped model) or a [drive] table (drive of regular structure)")
+                     "(lumped model), a [drive] table (drive of regular structure) or a [rotor] table (rotor on bearings)")
 
 
 #: where a top-level key belongs, for the error of a key given in a file of another kind
@@ -198,4 +218,9 @@ HINTS = {
                **{k: "a table of the linear forced analysis of FE and lumped models, not of hybrid files"
                   for k in ("load", "base_motion", "response")}},
     "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
+    "rotor": {**{k: "not a table of rotor files (a [rotor] file has [rotor], [analysis], [campbell], "
+                 "[unbalance_response], [[unbalance]] and title)" for k in OTHER_KIND},
+              "material": "in a rotor file the shaft material is [rotor.material]",
+              "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",
+              "support": "in a rotor file rigid supports are [[rotor.support]]"},
 }
