@@ -427,7 +427,7 @@ class DriveComparison:
             o = ("", "") if i == 0 else tuple(f"{v:.3f}" for v in order[i - 1])
             lines.append(f"{n:>6d} {self.convergence_lower[i, 0]:>12.7g} {lo_rel[i, 0]:>10.2e} "
                          f"{self.convergence_upper[i, 0]:>12.7g} {hi_rel[i, 0]:>10.2e} {o[0]:>10} {o[1]:>10}")
-        lines.append(f"{'inf':>6} {self.continuum_lower[0]:>12.7g} {'':>10} {self.continuum_upper[0]:>12.7g}   (10.50)")
+        lines.append(f"{'n→∞':>6} {self.continuum_lower[0]:>12.7g} {'':>10} {self.continuum_upper[0]:>12.7g}   (10.50)")
         return "\n".join(lines)
 
 
