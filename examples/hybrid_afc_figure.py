@@ -54,7 +54,7 @@ def tip_amplitude(res, T):
     return 0.5 * float(np.ptp(x[last]))
 
 
-def main(out: Path) -> Path:
+def main(out: str | Path = "docs/img/hybrid_afc_curves.png") -> Path:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -26,12 +26,14 @@ def _python_examples(out: Path):
     named after the example, with the suffix of the default output): (name, exit code, seconds)."""
     import importlib.util
     import inspect
+    import sys
     import traceback
 
     out.mkdir(parents=True, exist_ok=True)
     for path in sorted(EXAMPLES.glob("*.py")):
         spec = importlib.util.spec_from_file_location(f"drivefem_example_{path.stem}", path)
         module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module          # dataclasses look their module up while it loads
         t0 = time.perf_counter()
         try:
             spec.loader.exec_module(module)
@@ -47,6 +49,8 @@ def _python_examples(out: Path):
         except Exception:            # an example that fails is reported, the demo goes on
             traceback.print_exc()
             rc = 1
+        finally:
+            sys.modules.pop(spec.name, None)
         yield path.name, rc, time.perf_counter() - t0
         print()
 
