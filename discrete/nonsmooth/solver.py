@@ -499,42 +499,64 @@ def _kernel():
 
 
 class _Recorder:
-    """The recorded instants, states, modes and accumulated work: single samples (one-row views of
-    state vectors, which the solver never changes in place) and blocks of samples (copied from the
-    kernel's buffers), gathered into arrays once at the end."""
+    """The recorded instants, states, mode ids and accumulated work, in growing arrays (doubled when
+    full): single samples (an instant at an event) and blocks (copied from the kernel's buffers).
+    The sample count ``n`` is advanced last, so a Ctrl-C halfway through a record leaves the
+    arrays consistent."""
 
     def __init__(self, t0, z0, mode, progress):
-        self.ts, self.Ws, self.zs, self.ms = [t0], [0.0], [z0.copy()[None, :]], [(mode, 1)]
-        self.last_t = t0
+        cap = 1024
+        self.t, self.W = np.empty(cap), np.empty(cap)
+        self.Z = np.empty((cap, z0.size))
+        self.which = np.empty(cap, dtype=np.int64)
+        self.ids: dict = {}
+        self.n = 0
         self.progress = progress
+        self(t0, z0, mode, 0.0)
+
+    def _room(self, k: int) -> None:
+        need = self.n + k
+        if need > self.t.size:
+            cap = max(2 * self.t.size, need)
+            for name in ("t", "W", "Z", "which"):
+                old = getattr(self, name)
+                new = np.empty((cap,) + old.shape[1:], dtype=old.dtype)
+                new[:self.n] = old[:self.n]
+                setattr(self, name, new)
+
+    def _id(self, mode) -> int:
+        i = self.ids.get(mode)
+        if i is None:
+            i = self.ids[mode] = len(self.ids)
+        return i
+
+    @property
+    def last_t(self) -> float:
+        return float(self.t[self.n - 1])
 
     def __call__(self, t, z, mode, W) -> None:
-        self.ts.append(t)
-        self.zs.append(z[None, :])
-        self.ms.append((mode, 1))
-        self.Ws.append(W)
-        self.last_t = t
+        n = self.n
+        if n == self.t.size:
+            self._room(1)
+        self.t[n], self.W[n], self.Z[n], self.which[n] = t, W, z, self._id(mode)
+        self.n = n + 1
         if self.progress is not None:
             self.progress(t)
 
     def extend(self, times, Z, mode, W) -> None:
-        self.zs.append(Z.copy())
-        self.ms.append((mode, len(times)))
-        self.Ws.extend(W.tolist())
-        self.ts.extend(times.tolist())
-        self.last_t = self.ts[-1]
+        k = times.size
+        self._room(k)
+        n = self.n
+        self.t[n:n + k], self.W[n:n + k], self.Z[n:n + k] = times, W, Z
+        self.which[n:n + k] = self._id(mode)
+        self.n = n + k
         if self.progress is not None:
-            self.progress(self.last_t)
+            self.progress(float(times[-1]))
 
     def arrays(self):
-        """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W),
-        consistent even when a Ctrl-C struck halfway through a record."""
-        Z = np.concatenate(self.zs)
-        ids: dict = {}
-        counts = np.array([k for _, k in self.ms])
-        which = np.repeat([ids.setdefault(m, len(ids)) for m, _ in self.ms], counts)
-        n = min(len(self.ts), Z.shape[0], which.size, len(self.Ws))
-        return np.array(self.ts[:n]), Z[:n], list(ids), which[:n], np.array(self.Ws[:n])
+        """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W)."""
+        n = self.n
+        return self.t[:n].copy(), self.Z[:n], list(self.ids), self.which[:n].copy(), self.W[:n].copy()
 
 
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
