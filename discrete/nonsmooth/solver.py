@@ -86,7 +86,8 @@ class EventDrivenSolver:
     def _forces(self, t, z, mode):
         """(element forces along s, constraint rows) at one state: the cached linear map of an
         affine mode, the full evaluation otherwise."""
-        mode = tuple(mode)
+        if type(mode) is not tuple:
+            mode = tuple(mode)
         pc = self._pieces.get(mode)
         if pc is None and self.p.mode_affine(mode) and np.isfinite(self._t_end):
             pc = self._piece(mode, self._t_end - t)
@@ -139,6 +140,9 @@ class EventDrivenSolver:
     def _consistent_mode(self, t, z, mode, limits=None):
         """Release sticking frictions (|lam| above their limit) and persistent contacts (lam < 0),
         the most violated first, until the constraint forces are admissible."""
+        pc = self._pieces.get(tuple(mode))
+        if pc is not None and not pc.rows:      # no constraint in this mode: nothing to release
+            return list(mode)
         mode = list(mode)
         limits = dict(limits or {})
         for _ in range(4 * len(mode) + 4):
