@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ModelError, SolverError
 from .continuation import arclength, refine_fold
 from .hb import HBModel, floquet_hb_batch, time_guess
-from .shooting import ShootingModel
+from .shooting import ShootingModel, section_phase
 from .system import PeriodicSystem
 
 
@@ -295,30 +295,166 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
         y, _ = sh.solve(y, w0, sc)
     except (SolverError, np.linalg.LinAlgError) as exc:
         raise SolverError(f"continuation cannot start at omega = {w0!r}: {exc}") from exc
-    fun = sh.fun(sc)
-    br = arclength(fun, y, w0, w1, xscale=sc, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
-                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, tol=1e-8,
-                   callback=_report(progress))
-    om, resp, stab, mm, states, crit = [], [], [], [], [], []
-    for x, w in zip(br.x, br.w):           # all inside the range: a crossing is landed on the bound
-        resp.append(_shoot_measure(sm, sh, x, w))
-        states.append(x)
-        om.append(w)
-        _record_stability(sh.floquet(x, w, sc) if cfg.stability else None, mm, crit, stab)
-    folds = []
-    for i, wf, fr in br.folds:
-        try:
-            xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc, br.tangent_w[i] > 0)
-        except (SolverError, np.linalg.LinAlgError):
-            xf, wf = _refine_fold(br, i, wf, fr)
-        folds.append({"omega": wf, "response": _shoot_measure(sm, sh, xf, wf)})
+    wscale = abs(w1 - w0)
+    segments = _shooting_segments(sh, y, cfg, sc, wscale, progress)
+    om, resp, stab, mm, states, crit, phases, folds = [], [], [], [], [], [], [], []
+    for k, (br, phase, fun, sc) in enumerate(segments):
+        first = 0 if k == 0 else 1         # a resumed segment starts at the previous one's last orbit
+        for x, w in zip(br.x[first:], br.w[first:]):   # all inside the range: a crossing is landed on the bound
+            resp.append(_shoot_measure(sm, sh, x, w, phase))
+            states.append(x)
+            phases.append(phase)
+            om.append(w)
+            _record_stability(sh.floquet(x, w, sc, phase) if cfg.stability else None, mm, crit, stab)
+        for i, wf, fr in br.folds:
+            try:
+                xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc, br.tangent_w[i] > 0)
+            except (SolverError, np.linalg.LinAlgError):
+                xf, wf = _refine_fold(br, i, wf, fr)
+            folds.append({"omega": wf, "response": _shoot_measure(sm, sh, xf, wf, phase)})
+    br = segments[-1][0]
+    reason = br.reason
+    moves = [s[0].w[0] for s0, s in zip(segments, segments[1:]) if s[1] != s0[1]]
+    if moves:
+        reason += (f" ({len(moves)} change(s) of the shooting section away from events, at omega = "
+                   + ", ".join(f"{m:.8g}" for m in moves) + ")")
+    transitions = [t for s in segments for t in s[0].transitions]
+    if transitions:
+        reason += "; stepped over: " + "; ".join(t[2] for t in transitions)
     return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
                      max_multiplier=np.array(mm), folds=folds, method="shooting (event-driven, FD monodromy)",
-                     response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=br.reason,
+                     response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=reason,
                      completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
                      stability_computed=cfg.stability,
-                     extra={"steps_rejected": br.steps_rejected, "simulations": sh.n_sims}, states=states,
+                     extra={"steps_rejected": sum(s[0].steps_rejected for s in segments), "simulations": sh.n_sims,
+                            "section_changes": len(moves),
+                            "transitions": [{"omega_before": a, "omega_after": b, "what": d} for a, b, d in transitions],
+                            "section_phase_rad": [float(p) for p in phases]}, states=states,
                      critical=np.array(crit))
+
+
+def _shooting_segments(sh: ShootingModel, y, cfg: SteadySettings, sc, wscale, progress, max_changes: int = 200):
+    """Shooting continuation from the converged start ``y`` (section phase 0) in segments: when a segment
+    stalls (``ds_min``) and its last orbit has an event near the section (the map's Jacobian jumps when
+    an event crosses the section: shooting.py), the section is moved to the middle of the largest gap
+    between the orbit's events (:func:`section_phase`), the last point is carried there
+    (:meth:`ShootingModel.transfer`) and the branch is resumed along its last secant.  After a stepped-
+    over grazing (continuation.py) the branch is resumed with the variables' scales raised to the new
+    orbit's amplitudes (a contact excites DOFs that were nearly at rest: with the old scales the arc
+    length is all theirs and the steps stay tiny), and from then on again whenever a component of the
+    state outgrows twice its scale.  Returns [(Branch, phase, residual function, scale)]."""
+    w0, w1 = cfg.range
+    lo, hi = min(w0, w1), max(w0, w1)
+    segments, phase, x0, wa, orient, converged = [], 0.0, y, w0, None, True
+    steps_left = cfg.max_steps
+    rescaling = False                  # after a stepped-over grazing: scales follow the orbit
+    while True:
+        fun = sh.fun(sc, phase)
+        sc_seg = sc
+        try:
+            br = arclength(fun, x0, wa, w1, xscale=sc, wscale=wscale, ds=cfg.ds, ds_max=cfg.ds_max,
+                           ds_min=cfg.ds_min, max_steps=steps_left, start_converged=converged, tol=1e-8,
+                           callback=_report(progress) if not segments else _report_after_first(progress),
+                           w_bounds=(lo, hi), orientation=orient, transition=_event_change(sh, phase),
+                           stop_at_transition=True,
+                           stop_if=(lambda x, w, s=sc: bool(np.any(np.abs(x) > 2 * s))) if rescaling else None)
+        except (SolverError, np.linalg.LinAlgError) as exc:     # the carried point did not re-converge
+            last = segments[-1][0]
+            last.reason += f"; resuming on the section at phase {phase:.4f} rad failed: {exc}"
+            return segments
+        segments.append((br, phase, fun, sc_seg))
+        steps_left -= max(len(br.w) - 1, 0)
+        if br.stop not in ("ds_min", "transition", "stop_if") or len(segments) > max_changes or steps_left <= 0:
+            return segments
+        if br.stop in ("transition", "stop_if"):
+            rescaling = True
+            xl, wl = br.x[-1], br.w[-1]
+            try:
+                _, res = sh.run(xl, wl, dense=True, phase=phase)
+            except SolverError:
+                return segments
+            p = sh.problem(wl)
+            new_sc = np.concatenate([np.max(np.abs(res.x[p.f]), axis=1), np.max(np.abs(res.v[p.f]), axis=1)])
+            sc = np.maximum(sc, new_sc)
+            orient = np.concatenate([(xl - br.x[-2]) / sc, [(wl - br.w[-2]) / wscale]])
+            x0, wa, converged = xl, wl, True
+            continue
+        if len(segments) > 1 and len(br.w) < 2:          # no progress on the new section either
+            return segments
+        xl, wl = br.x[-1], br.w[-1]
+        try:
+            _, res = sh.run(xl, wl, phase=phase)
+        except SolverError:
+            return segments
+        new, clear = section_phase(res, wl, sh.nu)
+        full = sh.nu * 2 * np.pi
+        ev = np.mod(wl * np.array([e.t for e in res.events], float), full)
+        now = float(np.min(np.abs(np.mod(ev - phase + 0.5 * full, full) - 0.5 * full))) if ev.size else np.inf
+        if not now < 0.5 * clear:            # the section is not near an event: not the cause of the stall
+            return segments
+        try:
+            x0 = sh.transfer(xl, wl, phase, new)
+            if len(br.w) >= 2:
+                xp = sh.transfer(br.x[-2], br.w[-2], phase, new)
+                orient = np.concatenate([(x0 - xp) / sc, [(wl - br.w[-2]) / wscale]])
+            else:
+                orient = None
+        except SolverError:
+            return segments
+        phase, wa, converged = new, wl, False
+
+
+def _event_change(sh: ShootingModel, phase: float, short: float = 0.01):
+    """The continuation's ``transition`` hook: a description of the discontinuity-induced transition
+    between the orbits (x, w) and (xn, wn), or None.  A transition is a change of the events of one
+    period (e.g. ``contact_close`` and ``contact_open`` appear at a grazing), or a grazing contact (or
+    stick) on either orbit: two consecutive events of one element less than ``short`` of the period
+    apart (depth ~ duration^2: the map's term ~ depth^(3/2) makes the branch bend sharply there)."""
+    full = sh.nu * 2 * np.pi
+
+    def events(y, w):
+        _, res = sh.run(y, w, phase=phase)
+        kinds, closest = {}, np.inf
+        by_el = {}
+        for e in res.events:
+            key = f"{e.kind} ({e.element})"
+            kinds[key] = kinds.get(key, 0) + 1
+            by_el.setdefault(e.element, []).append(w * e.t)
+        for ph in by_el.values():
+            if len(ph) > 1:
+                ph = np.sort(np.mod(ph, full))
+                closest = min(closest, float(np.min(np.diff(np.concatenate([ph, [ph[0] + full]])))))
+        return kinds, closest / full
+
+    def change(x, w, xn, wn):
+        try:
+            (a, ca), (b, cb) = events(x, w), events(xn, wn)
+        except SolverError:
+            return None
+        where = f"between omega = {w:.10g} and {wn:.10g}"
+        if a != b:
+            diff = [f"{k}: {a.get(k, 0)} -> {b.get(k, 0)}" for k in sorted(set(a) | set(b)) if a.get(k, 0) != b.get(k, 0)]
+            return f"grazing / sticking transition {where} (events per period " + "; ".join(diff) + ")"
+        if min(ca, cb) < short:
+            return (f"grazing {where} (shortest contact / stick interval {ca:.2g} -> {cb:.2g} of the period: "
+                    f"the branch bends sharply there)")
+        return None
+
+    return change
+
+
+def _report_after_first(progress):
+    """The callback of a resumed segment: its first point repeats the previous segment's last one."""
+    if progress is None:
+        return None
+    seen = []
+
+    def cb(x, w):
+        if seen:
+            progress(w)
+        seen.append(w)
+
+    return cb
 
 
 def _refine_fold(br, i, wf, fr):
@@ -339,8 +475,8 @@ def _refine_fold(br, i, wf, fr):
     return br.x[i] + fr * (br.x[i + 1] - br.x[i]), float(wf)
 
 
-def _shoot_measure(sm, sh, y, w):
-    _, res = sh.run(y, w, dense=True)
+def _shoot_measure(sm, sh, y, w, phase=0.0):
+    _, res = sh.run(y, w, dense=True, phase=phase)
     p = sh.problem(w)
     return sm.measure(res.t, res.x[p.f], res.v[p.f], w)
 

@@ -20,6 +20,16 @@ How a branch ends (``Branch.stop``, ``Branch.completed``, ``Branch.reason``):
 * ``"ds_min"`` -- the step fell below ``ds_min``; the reason names the last frequency reached and the
   last failure (corrector divergence, residual error, tangent turn, landing failure).
 * ``"max_steps"`` -- ``max_steps`` points were added before the end was reached.
+
+Discontinuity-induced transitions (``transition`` hook, e.g. shooting on nonsmooth models): where an
+orbit grazes a switching surface (a contact that starts with zero depth) the branch is only C^1 -- the
+map has a term ~ depth^(3/2) whose coefficient grows with the contact stiffness -- so its tangent turns
+by O(1) within an arc length far below ``ds_min`` and the tangent-turn test stalls the branch.  As a
+last resort, when the step has fallen below ``ds_min``, the largest rejected step whose corrector
+converged (a solution of ``R = 0`` on the arc-length plane) and was rejected only for its tangent turn
+is accepted if ``transition(x, w, xn, wn)`` names a change between the two orbits (e.g. contact events
+that appear); it is recorded in ``Branch.transitions`` (w before, w after, description) and the branch
+goes on.  Without the hook, or if it names no change, the branch stalls as before.
 """
 from __future__ import annotations
 
@@ -41,7 +51,9 @@ class Branch:
     steps_rejected: int = 0
     completed: bool = False                            # True iff the last point is solved at w_end
     stop: str = ""                                     # "end" | "left_range" | "ds_min" | "max_steps" | "interrupted"
+    #                                                    | "transition" | "stop_if" (only with those options)
     w_end: float = float("nan")                        # the end of the range that was asked for
+    transitions: list = field(default_factory=list)    # (w before, w after, description): stepped-over grazings
 
     @property
     def stopped_at(self) -> float:
@@ -92,9 +104,16 @@ def _land(fun, xa, wa, xb, wb, wt, xs, tol, maxit, h):
 
 
 def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_max=0.1, max_steps=2000,
-              tol=1e-9, maxit=12, w_bounds=None, start_converged=False, callback=None) -> Branch:
+              tol=1e-9, maxit=12, w_bounds=None, start_converged=False, callback=None, orientation=None,
+              transition=None, stop_at_transition=False, stop_if=None) -> Branch:
     """Follow the branch from (x0, w0) (corrected at fixed w0 first) towards ``w_stop``; it ends exactly
-    at ``w_stop`` (landed, ``completed``) or says where and why it stopped (module docstring)."""
+    at ``w_stop`` (landed, ``completed``) or says where and why it stopped (module docstring).
+    ``orientation``: a direction in the scaled variables ``[x / xscale, w / wscale]`` that the first
+    tangent must follow (default: increasing w towards ``w_stop``), e.g. to resume a branch.
+    ``transition``: the hook of the module docstring (or None).  ``stop_at_transition``: end the branch
+    (``stop = "transition"``) at the point after a stepped-over transition, and ``stop_if(x, w) -> bool``:
+    end it (``stop = "stop_if"``) after an accepted point for which it holds -- the caller resumes the
+    branch, e.g. with the variables rescaled to the new orbit."""
     xs = np.asarray(xscale, float)
     direction = 1.0 if w_stop >= w0 else -1.0
     lo, hi = w_bounds if w_bounds is not None else (min(w0, w_stop), max(w0, w_stop))
@@ -155,6 +174,8 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
 
     prev = np.zeros(n + 1)
     prev[n] = direction
+    if orientation is not None:
+        prev = np.asarray(orientation, float) / np.linalg.norm(orientation)
     tau = tangent(x, w, prev)
     br.x.append(x.copy())
     br.w.append(w)
@@ -169,6 +190,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             ok = False
             failure = f"the step ds = {h:g} is below ds_min before any try"
             landed = None
+            turned = None          # the largest step rejected only for its tangent turn: (xn, wn, tn, it, landed, h)
             while h >= ds_min:
                 try:
                     uu, it = corrector(u + h * tau, tau)
@@ -180,6 +202,8 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
                         it = max(it, it_land)
                     tn = tangent(xn, wn, tau)
                     if tn @ tau <= 0.8:
+                        if turned is None and transition is not None:
+                            turned = (xn, wn, tn, it, landed, h)
                         raise _StepFailure(f"the tangent turned by {np.degrees(np.arccos(np.clip(tn @ tau, -1, 1))):.1f}"
                                            f" deg (limit 36.9 deg) between omega = {w:.6g} and {wn:.6g}")
                     ok = True
@@ -189,6 +213,12 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
                     landed = None
                 br.steps_rejected += 1
                 h *= 0.5
+            if not ok and turned is not None:
+                what = transition(x, w, turned[0], turned[1])
+                if what:
+                    xn, wn, tn, it, landed, h = turned
+                    br.transitions.append((float(w), float(wn), str(what)))
+                    ok = True
             if not ok:
                 br.stop = "ds_min"
                 br.reason = (f"stalled at omega = {w:.10g} (range end {w_end:.10g} not reached): the step fell below "
@@ -208,6 +238,14 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
                 h = min(1.5 * h, ds_max)
             elif it >= 7:
                 h = max(0.6 * h, ds_min)
+            if stop_if is not None and landed is None and stop_if(x, w):
+                br.stop = "stop_if"
+                br.reason = f"stopped at omega = {w:.10g} on request (stop_if)"
+                break
+            if stop_at_transition and br.transitions and br.transitions[-1][1] == w and landed is None:
+                br.stop = "transition"
+                br.reason = f"stopped at omega = {w:.10g} after a transition: {br.transitions[-1][2]}"
+                break
             if landed == w_end:
                 br.stop, br.completed = "end", True
                 br.reason = f"reached the end of the frequency range: omega = {w_end:.10g} (solved there)"

@@ -13,6 +13,12 @@ and against the closed-form saltation product of a one-sided (bilinear) oscillat
 ``h = 1e-6`` of the state's scale (truncation ~h^2, round-off ~1e-16/h: ~1e-10 relative).
 Floquet multipliers are its eigenvalues; stable if all |mu| < 1 + 1e-6.
 
+Section: the map starts at the forcing phase ``phase`` (t0 = phase / w, default 0) and runs one period,
+y = [q, v](t0).  An event of the orbit exactly at the section (e.g. a slip reversal at t0) makes the map's
+Jacobian jump there (the saltation matrix moves from the end of the period to its start), so the fixed
+point's branch y(w) has a kink and the continuation cannot pass it; the same orbit on a section between
+its events is smooth there (:func:`section_phase`, :meth:`ShootingModel.transfer`).
+
 Cost: every map at one frequency reuses one solver and so its exact pieces (built once per mode),
 and the Problems of the few most recent frequencies are kept; a period map then costs its events.
 """
@@ -76,9 +82,10 @@ class ShootingModel:
     def period(self, omega):
         return self.nu * 2 * np.pi / omega
 
-    def run(self, y, omega, dense=False, periods=1):
+    def run(self, y, omega, dense=False, periods=1, phase=0.0):
         p = self.problem(omega)
         T = self.period(omega)
+        t0 = phase / omega
         nf = p.nf
         p.q0, p.v0 = np.array(y[:nf], float), np.array(y[nf:], float)
         kw = dict(energy=False, max_step=T / self.steps)
@@ -87,49 +94,67 @@ class ShootingModel:
             kw["output_step"] = T / self.output_points
             kw["max_step"] = min(kw["max_step"], T / self.output_points)
         if self.reuse:
-            res = self._solver(p, omega, dense, kw).run(periods * T)
+            res = self._solver(p, omega, dense, kw).run(t0 + periods * T, t0)
         else:
-            res = simulate(p, periods * T, Options(**kw))
+            res = simulate(p, t0 + periods * T, Options(**kw), t0=t0)
         self.n_sims += 1
         if res.stopped_early:
             raise SolverError(f"period map at omega = {omega!r}: {res.reason}")
         yend = np.concatenate([res.x[p.f, -1], res.v[p.f, -1]])
         return yend, res
 
-    def map(self, y, omega):
-        return self.run(y, omega)[0]
+    def map(self, y, omega, phase=0.0):
+        return self.run(y, omega, phase=phase)[0]
 
-    def jacobian(self, y, omega, scale, central=False):
+    def transfer(self, y, omega, phase_from, phase_to):
+        """The state at the section ``phase_to`` of the orbit through y at the section ``phase_from``
+        (integrated forward by less than one period)."""
+        p = self.problem(omega)
+        full = self.nu * 2 * np.pi
+        dphi = (phase_to - phase_from) % full
+        if dphi == 0.0:
+            return np.array(y, float)
+        t0 = phase_from / omega
+        p.q0, p.v0 = np.array(y[:p.nf], float), np.array(y[p.nf:], float)
+        kw = dict(energy=False, max_step=self.period(omega) / self.steps)
+        kw.update(self.options)
+        res = simulate(p, t0 + dphi / omega, Options(**kw), t0=t0)
+        self.n_sims += 1
+        if res.stopped_early:
+            raise SolverError(f"section transfer at omega = {omega!r}: {res.reason}")
+        return np.concatenate([res.x[p.f, -1], res.v[p.f, -1]])
+
+    def jacobian(self, y, omega, scale, central=False, phase=0.0):
         n = y.size
         J = np.zeros((n, n))
-        P0 = None if central else self.map(y, omega)
+        P0 = None if central else self.map(y, omega, phase)
         for j in range(n):
             h = 1e-6 * scale[j]
             e = np.zeros(n)
             e[j] = h
             if central:
-                J[:, j] = (self.map(y + e, omega) - self.map(y - e, omega)) / (2 * h)
+                J[:, j] = (self.map(y + e, omega, phase) - self.map(y - e, omega, phase)) / (2 * h)
             else:
-                J[:, j] = (self.map(y + e, omega) - P0) / h
+                J[:, j] = (self.map(y + e, omega, phase) - P0) / h
         return J, P0
 
-    def fun(self, scale):
-        """Residual for :func:`~discrete.steady.continuation.arclength`."""
+    def fun(self, scale, phase=0.0):
+        """Residual for :func:`~discrete.steady.continuation.arclength` (section at ``phase``)."""
 
         def f(y, w, need_w=True):
-            J, P0 = self.jacobian(y, w, scale)
+            J, P0 = self.jacobian(y, w, scale, phase=phase)
             R = P0 - y
             Jx = J - np.eye(y.size)
             Jw = None
             if need_w:
                 hw = 1e-7 * w
-                Jw = (self.map(y, w + hw) - P0) / hw
+                Jw = (self.map(y, w + hw, phase) - P0) / hw
             return R, Jx, Jw
 
         return f
 
-    def floquet(self, y, omega, scale):
-        J, _ = self.jacobian(y, omega, scale, central=True)
+    def floquet(self, y, omega, scale, phase=0.0):
+        J, _ = self.jacobian(y, omega, scale, central=True, phase=phase)
         return np.linalg.eigvals(J)
 
     def solve(self, y0, omega, scale, tol=1e-10, maxit=30):
@@ -155,3 +180,16 @@ class ShootingModel:
             if d <= tol:
                 return y, k, True
         return y, periods, False
+
+
+def section_phase(res, omega, nu: int = 1) -> tuple[float, float]:
+    """(phase, clearance): the forcing phase in [0, nu 2 pi) farthest from every event of the simulated
+    orbit ``res`` (the middle of the largest gap between the events' phases), and its distance (rad) to
+    the nearest event; (0, inf) for an orbit without events."""
+    full = nu * 2 * np.pi
+    ph = np.sort(np.mod(omega * np.array([e.t for e in res.events], float), full))
+    if ph.size == 0:
+        return 0.0, float("inf")
+    gaps = np.diff(np.concatenate([ph, [ph[0] + full]]))
+    k = int(np.argmax(gaps))
+    return float(np.mod(ph[k] + 0.5 * gaps[k], full)), float(0.5 * gaps[k])
