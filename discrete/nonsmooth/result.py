@@ -4,9 +4,42 @@
 regularised) and :class:`discrete.timestepping.SteppingResult` (Moreau-Jean) add their own statistics."""
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
+
+
+class EventState(Mapping):
+    """The DOF states ``{name: {"x": .., "v": ..}}`` of one event, read from the run's arrays of
+    event states (one column per event) when first looked at: a run with thousands of events
+    builds no dictionaries nobody reads."""
+
+    __slots__ = ("_names", "_x", "_v", "_k", "_d")
+
+    def __init__(self, names, x: np.ndarray, v: np.ndarray, k: int):
+        self._names, self._x, self._v, self._k, self._d = names, x, v, k, None
+
+    def _dict(self) -> dict:
+        if self._d is None:
+            k = self._k
+            self._d = {n: {"x": float(xk), "v": float(vk)} for n, xk, vk in zip(self._names, self._x[:, k], self._v[:, k])}
+        return self._d
+
+    def __getitem__(self, name):
+        return self._dict()[name]
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def __repr__(self) -> str:
+        return repr(self._dict())
+
+    def __reduce__(self):
+        return dict, (self._dict(),)
 
 
 @dataclass
@@ -14,7 +47,7 @@ class Event:
     t: float
     kind: str            # stick | slip | reversal | impact | contact_open | contact_close
     element: str
-    state: dict          # {dof name: {"x": .., "v": ..}}
+    state: Mapping       # {dof name: {"x": .., "v": ..}} (an EventState or a dict)
 
     def to_dict(self) -> dict:
         return {"t": float(self.t), "kind": self.kind, "element": self.element,

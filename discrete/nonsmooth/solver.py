@@ -25,7 +25,7 @@ from ..linalg.blas import single_threaded_blas
 from .periodic import detect_period, detect_period_smooth
 from .piece import AffinePiece
 from .problem import Problem
-from .result import Event, SimulationResult
+from .result import Event, EventState, SimulationResult
 
 
 
@@ -102,10 +102,9 @@ class EventDrivenSolver:
             return
         Z = np.array([z for _, z in self._event_states]).T
         x, xd = self.p.full_state(*self._split(Z))
-        x, xd = x.T.tolist(), xd.T.tolist()
-        names = self.p.names
+        names = tuple(self.p.names)
         for k, (ev, _) in enumerate(self._event_states):
-            ev.state.update({n: {"x": xk, "v": vk} for n, xk, vk in zip(names, x[k], xd[k])})
+            ev.state = EventState(names, x, xd, k)
         self._event_states = []
 
     def _project(self, t, z, i, target, velocity: bool):
