@@ -173,3 +173,44 @@ class Element:
         or an error naming the element if it has none."""
         raise ModelError(f"element {self.name!r}", "kind", self.kind, "an element with a Moreau-Jean law "
                          "(use method = 'event')")
+
+
+# ---------------------------------------------------------------- Moreau-Jean step laws
+class StepLaw:
+    """An element's law over one Moreau-Jean step (returned by ``Element.moreau(h, theta)``): whether
+    it takes part in the local contact problem, the impulse that solves its own law given the local
+    velocity (projected Gauss-Seidel), its impulse bound, and what happened.  Defaults: no explicit force, no bound, not conservative, takes part every step."""
+
+    conservative = False       # its energy is a potential (not counted as impulse work)
+    bound = 0.0                # impulse bound of the step (Coulomb); 0: none
+    active = True
+    has_explicit = False       # a velocity-dependent force treated explicitly
+
+    def __init__(self, element):
+        self.el = element
+
+    def explicit_force(self, u: float) -> float:
+        """The explicit force at the element's velocity u (only where ``has_explicit``)."""
+        return 0.0
+
+    def start(self, u0: float, v_scale: float) -> None:
+        """State at t0 (u0: the element's velocity)."""
+
+    def begin(self, s0: float, u0: float) -> None:
+        """Set up the step from the element's position and velocity at its start."""
+
+    def project(self, u: float, D: float, p: float) -> float:
+        """The impulse that satisfies the law given the local velocity u (own impulse p included,
+        D the diagonal Delassus entry)."""
+        raise NotImplementedError
+
+    def retry(self, p: float) -> bool:
+        """Whether the step must be solved again with a changed bound (a breakaway within it)."""
+        return False
+
+    def retry_clip(self, p: float) -> float:
+        return min(max(p, -self.bound), self.bound)
+
+    def finish(self, p: float) -> list:
+        """[(rank, event kind)] of the step (rank orders the kinds of events of one step)."""
+        return []

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element
+from .base import Element, StepLaw
 
 
 @dataclass
@@ -144,8 +144,47 @@ class Friction(Element):
 
     # ------------------------------------------------------------ Moreau-Jean
     def moreau(self, h, theta):
-        from ...timestepping.laws import CoulombStep
-
         if self.mass0 is not None and self.mass_rate:
             raise ModelError(f"element {self.name!r}", "normal", "weight", "constant levels for the time stepper")
         return CoulombStep(self, h)
+
+
+class CoulombStep(StepLaw):
+    """Coulomb friction: -p in h F Sign(u - surface velocity), F the static level for an element at
+    rest at the start of the step, else the kinetic level; the viscous/quadratic/cubic part of the
+    slip law is explicit; a saturated static bound means breakaway (kinetic level, solved again)."""
+
+    def __init__(self, element, h):
+        super().__init__(element)
+        self.h = h
+        self.fk, self.fs, self.sv = element.kinetic, element.static, element.surface_velocity
+        self.stick = False
+        el = element
+        self.has_explicit = bool(el.viscous or el.quadratic or el.cubic)
+
+    def explicit_force(self, u):
+        el = self.el
+        w = u - self.sv
+        return -el.viscous * w - el.quadratic * w * abs(w) - el.cubic * w * w * w
+
+    def start(self, u0, v_scale):
+        self.stick = bool(abs(u0 - self.sv) <= 1e-12 * v_scale)
+
+    def begin(self, s0, u0):
+        self.bound = self.h * (self.fs if self.stick else self.fk)
+
+    def project(self, u, D, p):
+        r = u - self.sv - D * p
+        return min(max(-r / D, -self.bound), self.bound)
+
+    def retry(self, p):
+        if self.stick and abs(p) >= self.bound * (1 - 1e-12) and self.fs > self.fk:
+            self.bound = self.h * self.fk
+            return True
+        return False
+
+    def finish(self, p):
+        new = bool(abs(p) < self.bound * (1 - 1e-9) and self.bound > 0)
+        out = [] if new == self.stick else [(0, "stick" if new else "slip")]
+        self.stick = new
+        return out

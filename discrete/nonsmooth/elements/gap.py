@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element
+from .base import Element, StepLaw
 
 
 @dataclass
@@ -126,9 +126,49 @@ class Gap(Element):
         return self.lower, self.upper
 
     def moreau(self, h, theta):
-        from ...timestepping.laws import ClearanceSpringStep
-
         if self.law != "exact":
             raise ModelError(f"element {self.name!r}", "law", self.law,
                              "'exact' for the Moreau-Jean scheme (use method = 'event' for the smooth law (11.2))")
         return ClearanceSpringStep(self, h, theta)
+
+
+class ClearanceSpringStep(StepLaw):
+    """Piecewise-linear spring with clearance (one-sided spring, exact gap): the impulse h F(s_theta)
+    of the force at the theta-point position s_theta = s0 + h theta ((1 - theta) u0 + theta u1),
+    solved exactly on its branch (implicit: a stiff stop does not limit the step)."""
+
+    conservative = True
+
+    def __init__(self, element, h, theta):
+        super().__init__(element)
+        self.h = h
+        self.k = element.k
+        self.lo, self.up = element.clearance()
+        self.sb = h * theta * theta
+        self.hkb = h * self.k * self.sb
+        self.theta = theta
+        self.contact = False
+
+    def begin(self, s0, u0):
+        th = self.theta
+        self.sa = s0 + self.h * th * (1 - th) * u0
+
+    def project(self, u, D, p):
+        r = u - D * p
+        sfree = self.sa + self.sb * r
+        if sfree > self.up:
+            return -self.h * self.k * (sfree - self.up) / (1.0 + self.hkb * D)
+        if sfree < self.lo:
+            return -self.h * self.k * (sfree - self.lo) / (1.0 + self.hkb * D)
+        return 0.0
+
+    def energy_term(self, s: float) -> float:
+        """k d^2 (twice the potential energy), d the penetration beyond the clearance."""
+        d = s - self.up if s > self.up else (s - self.lo if s < self.lo else 0.0)
+        return self.k * d * d
+
+    def finish(self, p):
+        new = bool(p != 0)
+        out = [] if new == self.contact else [(1, "contact_close")] if new else [(2, "contact_open")]
+        self.contact = new
+        return out

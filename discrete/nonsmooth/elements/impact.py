@@ -5,7 +5,7 @@ import math
 from dataclasses import dataclass
 
 from ...errors import ModelError, SolverError
-from .base import Element
+from .base import Element, StepLaw
 
 
 def restitution_damping_ratio(e: float) -> float:
@@ -95,6 +95,31 @@ class Impact(Element):
 
     # ------------------------------------------------------------ Moreau-Jean
     def moreau(self, h, theta):
-        from ...timestepping.laws import UnilateralStep
-
         return UnilateralStep(self, h)
+
+
+class UnilateralStep(StepLaw):
+    """Rigid stop s >= s_min with Newton restitution e: for an element whose predicted position
+    s0 + h/2 s0' is at or beyond the stop, p >= 0 complementary to u + e u(t0) >= 0."""
+
+    def __init__(self, element, h):
+        super().__init__(element)
+        self.h = h
+        self.active = False
+        self.target = 0.0
+        self.contact = False
+
+    def begin(self, s0, u0):
+        el = self.el
+        self.active = bool(s0 + 0.5 * self.h * u0 <= el.s_min)
+        self.target = -el.restitution * min(u0, 0.0) if self.active else 0.0
+
+    def project(self, u, D, p):
+        r = u - D * p - self.target
+        return max(0.0, -r / D)
+
+    def finish(self, p):
+        new = bool(self.active and p > 0)
+        out = [] if new == self.contact else [(1, "impact")] if new else [(2, "contact_open")]
+        self.contact = new
+        return out

@@ -8,6 +8,7 @@ import numpy as np
 
 from ...errors import ModelError
 from .base import Element
+from .gap import ClearanceSpringStep
 
 
 @dataclass
@@ -71,6 +72,4 @@ class OneSided(Element):
         return (self.s_open if self.side == -1 else -inf), (self.s_open if self.side == 1 else inf)
 
     def moreau(self, h, theta):
-        from ...timestepping.laws import ClearanceSpringStep
-
         return ClearanceSpringStep(self, h, theta)
