@@ -182,8 +182,11 @@ class RotorFile(ModelFileBase):
 
 
 KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
-HYBRID_MARKERS = ("body", "driver", "spring", "damper", "friction", "one_sided", "gap", "impact", "cubic_spring",
-                  "force", "contact", "motor", "distributed_friction", "reduction", "initial", "simulation", "steady", "sweep")
+HYBRID_MARKERS = tuple(dict.fromkeys(("body", "driver", "spring", "damper", *ELEMENT_TABLES, "force",
+                                      "distributed_friction", "reduction", "initial", "simulation", "steady",
+                                      "sweep")))
+"""Tables that make a file with [[segment]]s hybrid: lumped parts, every element table of the
+element registry (a new element needs no entry here), and the time/steady-state tables."""
 
 
 def detect_kind(doc: dict) -> str:
