@@ -199,39 +199,9 @@ class BandFactor:
 
 
 # ====================================================================== result
-def damping_ratio(eigenvalues: np.ndarray, rigid: np.ndarray) -> np.ndarray:
-    """zeta = -Re lam / |lam| of each eigenvalue (0 for a rigid-body mode; negative: it grows)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        z = -eigenvalues.real / np.abs(eigenvalues)
-    return np.where(rigid, 0.0, z)
-
-
-def log_decrement(eigenvalues: np.ndarray, rigid: np.ndarray) -> np.ndarray:
-    """delta = -2 pi Re lam / Im lam of each eigenvalue (inf for an overdamped one, 0 for a rigid one)."""
-    lam = eigenvalues
-    with np.errstate(divide="ignore", invalid="ignore"):
-        d = np.where(lam.imag > 0, -2 * np.pi * lam.real / np.where(lam.imag > 0, lam.imag, 1.0), np.inf)
-    return np.where(rigid, 0.0, d)
-
-
-@dataclass
-class ComplexModalResult:
-    """Complex modes, lowest |lam| first (one of each conjugate pair: Im lam >= 0).
-
-    ``shapes`` (n_dofs, n_modes) complex, each scaled so that its largest entry is 1 (real);
-    constrained DOFs are zero.  ``block`` tells which independent block of the DOF graph a
-    mode belongs to (see the module notes)."""
-
-    eigenvalues: np.ndarray
-    shapes: np.ndarray
-    residuals: np.ndarray
-    rigid: np.ndarray
-    block: np.ndarray
-    speed: float
-    n_dofs: int
-    method: str
-    tolerance: float
-    warnings: list[str] = field(default_factory=list)
+class ComplexModeFigures:
+    """The figures of complex modes derived from ``eigenvalues`` (one of each conjugate pair),
+    ``rigid``, ``residuals`` and ``tolerance`` (rigid-body modes read 0)."""
 
     @property
     def natural_frequency_rad_s(self) -> np.ndarray:
@@ -250,16 +220,41 @@ class ComplexModalResult:
     @property
     def damping_ratio(self) -> np.ndarray:
         """zeta = -Re lam / |lam| (negative: the mode grows)."""
-        return damping_ratio(self.eigenvalues, self.rigid)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = -self.eigenvalues.real / np.abs(self.eigenvalues)
+        return np.where(self.rigid, 0.0, z)
 
     @property
     def log_decrement(self) -> np.ndarray:
         """delta = 2 pi zeta / sqrt(1 - zeta^2) = -2 pi Re lam / Im lam (inf for an overdamped mode)."""
-        return log_decrement(self.eigenvalues, self.rigid)
+        lam = self.eigenvalues
+        with np.errstate(divide="ignore", invalid="ignore"):
+            d = np.where(lam.imag > 0, -2 * np.pi * lam.real / np.where(lam.imag > 0, lam.imag, 1.0), np.inf)
+        return np.where(self.rigid, 0.0, d)
 
     @property
     def reliable(self) -> np.ndarray:
         return self.residuals < self.tolerance
+
+
+@dataclass
+class ComplexModalResult(ComplexModeFigures):
+    """Complex modes, lowest |lam| first (one of each conjugate pair: Im lam >= 0).
+
+    ``shapes`` (n_dofs, n_modes) complex, each scaled so that its largest entry is 1 (real);
+    constrained DOFs are zero.  ``block`` tells which independent block of the DOF graph a
+    mode belongs to (see the module notes)."""
+
+    eigenvalues: np.ndarray
+    shapes: np.ndarray
+    residuals: np.ndarray
+    rigid: np.ndarray
+    block: np.ndarray
+    speed: float
+    n_dofs: int
+    method: str
+    tolerance: float
+    warnings: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
         ld = self.log_decrement

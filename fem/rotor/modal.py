@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from discrete.errors import ModelError
-from discrete.linear.complex_modal import ComplexModalResult, QuadraticEigensolver, damping_ratio, log_decrement
+from discrete.linear.complex_modal import ComplexModalResult, ComplexModeFigures, QuadraticEigensolver
 
 from .assembly import RotorSystem, assemble_rotor
 from .model import Rotor
@@ -20,7 +20,7 @@ from .whirl import Orbits, classify
 
 
 @dataclass
-class RotorModes:
+class RotorModes(ComplexModeFigures):
     """Modes at one speed, lowest |lam| first (one of each conjugate pair).
 
     Frequencies in rad/s: ``omega_damped_rad_s`` = Im lam, ``natural_frequency_rad_s`` = |lam|;
@@ -46,30 +46,6 @@ class RotorModes:
     method: str
     n_dofs: int
     warnings: list = field(default_factory=list)
-
-    @property
-    def omega_damped_rad_s(self) -> np.ndarray:
-        return np.where(self.rigid, 0.0, self.eigenvalues.imag)
-
-    @property
-    def natural_frequency_rad_s(self) -> np.ndarray:
-        return np.where(self.rigid, 0.0, np.abs(self.eigenvalues))
-
-    @property
-    def frequencies_hz(self) -> np.ndarray:
-        return self.omega_damped_rad_s / (2 * np.pi)
-
-    @property
-    def damping_ratio(self) -> np.ndarray:
-        return damping_ratio(self.eigenvalues, self.rigid)
-
-    @property
-    def log_decrement(self) -> np.ndarray:
-        return log_decrement(self.eigenvalues, self.rigid)
-
-    @property
-    def reliable(self) -> np.ndarray:
-        return self.residuals < self.tolerance
 
     @property
     def n_modes(self) -> int:
