@@ -174,6 +174,17 @@ class OneSided(Coordinate):
         return E.OneSided, dict(k=self.k, s_open=-sgn * self.preload / self.k, side=sgn), False
 
 
+def _clearance_rules(t, what: str) -> None:
+    """The bounds of a clearance table (gap, contact): ``delta`` or ``lower``/``upper``, at least one,
+    ``lower <= upper``."""
+    if t.delta is not None and (t.lower is not None or t.upper is not None):
+        rule("delta", t.delta, "either delta (symmetric) or lower/upper")
+    if t.delta is None and t.lower is None and t.upper is None:
+        rule("delta", None, f"delta = .. or lower = .. / upper = .. ({what})")
+    if t.lower is not None and t.upper is not None and t.lower > t.upper:
+        rule("lower", t.lower, f"a number <= upper = {t.upper!r}")
+
+
 @element_table("gap")
 class Gap(Coordinate):
     """``[[gap]]``: clearance/backlash (11.1): no force for lower <= s <= upper, spring k beyond.
@@ -196,12 +207,7 @@ class Gap(Coordinate):
     @model_validator(mode="after")
     def _bounds(self):
         self._require_where()
-        if self.delta is not None and (self.lower is not None or self.upper is not None):
-            rule("delta", self.delta, "either delta (symmetric) or lower/upper")
-        if self.delta is None and self.lower is None and self.upper is None:
-            rule("delta", None, "delta = .. or lower = .. / upper = .. (the clearance)")
-        if self.lower is not None and self.upper is not None and self.lower > self.upper:
-            rule("lower", self.lower, f"a number <= upper = {self.upper!r}")
+        _clearance_rules(self, "the clearance")
         if self.stop and (self.law != "exact" or self.given("L")):
             rule("law" if self.law != "exact" else "L", self.law if self.law != "exact" else self.L,
                  "lower and upper (or delta): the arctan law (11.2) is a symmetric clearance")
@@ -335,12 +341,7 @@ class Contact(Coordinate):
     @model_validator(mode="after")
     def _bounds(self):
         self._require_where()
-        if self.delta is not None and (self.lower is not None or self.upper is not None):
-            rule("delta", self.delta, "either delta (symmetric) or lower/upper")
-        if self.delta is None and self.lower is None and self.upper is None:
-            rule("delta", None, "delta = .. or lower = .. / upper = .. (the clearance or the stop)")
-        if self.lower is not None and self.upper is not None and self.lower > self.upper:
-            rule("lower", self.lower, f"a number <= upper = {self.upper!r}")
+        _clearance_rules(self, "the clearance or the stop")
         return self
 
     def element(self, where, kind, weight=None):
