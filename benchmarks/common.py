@@ -330,6 +330,16 @@ def print_summary(rec: dict) -> None:
           f"target {rec['target'] or '-'}: {verdict(rec)}{acc}", flush=True)
 
 
+def finish(recs: list[dict]) -> int:
+    """Print the summary of every record, then their ``BENCH-RESULT`` lines; the exit code: 1 when a
+    target is not met, else 0 (records without a target never fail)."""
+    for rec in recs:
+        print_summary(rec)
+    for rec in recs:
+        emit(rec)
+    return 0 if all(rec["met"] is not False for rec in recs) else 1
+
+
 def _num(x) -> str:
     if isinstance(x, float):
         return f"{x:.2e}"

@@ -231,11 +231,7 @@ def main(argv=None) -> int:
     if a.profile or any(rec["met"] is False for rec in recs):
         profile(run_pkg)
     print()
-    for rec in recs:
-        common.print_summary(rec)
-    for rec in recs:
-        common.emit(rec)
-    return 0 if all(rec["met"] is not False for rec in recs) else 1
+    return common.finish(recs)
 
 
 if __name__ == "__main__":

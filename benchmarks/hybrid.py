@@ -197,11 +197,7 @@ def main(argv=None) -> int:
     print(f"drill string, reduced (2 modes), 40 s: {ev} events, {t.line()}: {ev / t.wall_stats.median:.0f} events/s "
           f"wall, {ev / t.cpu_stats.median:.0f} events/s cpu; energy error {t.result.solver.energy_error:.1e}")
     print()
-    for rec in recs:
-        common.print_summary(rec)
-    for rec in recs:
-        common.emit(rec)
-    return 0 if all(rec["met"] is not False for rec in recs) else 1
+    return common.finish(recs)
 
 
 if __name__ == "__main__":

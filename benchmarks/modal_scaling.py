@@ -143,11 +143,7 @@ def main(argv=None) -> int:
             None, float(p), None, metric="exponent p of time ~ DOFs^p (>= 1e3 DOFs; ~1 wanted)", unit="",
             runs=args.runs))
     print()
-    for rec in recs:
-        common.print_summary(rec)
-    for rec in recs:
-        common.emit(rec)
-    return 0 if all(rec["met"] is not False for rec in recs) else 1
+    return common.finish(recs)
 
 
 if __name__ == "__main__":

@@ -223,11 +223,7 @@ def main(argv=None):
                       runs=1),
     ]
     print()
-    for rec in recs:
-        common.print_summary(rec)
-    for rec in recs:
-        common.emit(rec)
-    return 0 if all(rec["met"] for rec in recs) else 1
+    return common.finish(recs)
 
 
 if __name__ == "__main__":
