@@ -120,9 +120,12 @@ def parse_sweep(doc: dict) -> dict:
     base = {k: v for k, v in doc.items() if k != "sweep"}
     for path in dict.fromkeys(k for pt in pts for k in pt):
         _locate(copy.deepcopy(base), path)
-    studies = [_point_study(base, pt, sw.analysis) for pt in pts]
+    first = None
+    for pt in pts:                          # every point checked; only the first one's study is kept
+        study = _point_study(base, pt, sw.analysis)
+        first = first or study
     return {"analysis": sw.analysis, "points": pts, "periods": sw.periods,
-            "title": studies[0].title if studies else "", "kind": studies[0].kind if studies else None}
+            "title": first.title if first else "", "kind": first.kind if first else None}
 
 
 def _point_study(base: dict, values: dict, analysis: str):
