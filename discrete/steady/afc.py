@@ -42,6 +42,8 @@ class SteadySettings:
     response_element: str | None = None      # ... or an element's force magnitude
     measure: str = "amplitude"               # "amplitude" | "max" | "min" | "peak" | "h1"
     scale: float = 1.0
+    start: str = "linear"                    # HB start: "linear" guess, or "time": integrated from x0/v0
+    start_periods: int = 100                 # "time": forcing periods (x subharmonic) integrated first
 
 
 @dataclass
@@ -239,14 +241,7 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
     w0, w1 = cfg.range
-    try:
-        X0 = hb.solve(hb.linear_guess(w0), w0)[0]
-    except (SolverError, np.linalg.LinAlgError):
-        try:       # fall back on a time-integrated start (same model, 60 periods from rest)
-            X0 = hb.solve(time_guess(hb, w0), w0)[0]
-        except (SolverError, np.linalg.LinAlgError) as exc:
-            raise SolverError(f"continuation cannot start at omega = {w0!r} (no HB convergence from the "
-                              f"linear or the time-integrated guess): {exc}") from exc
+    X0 = _hb_start(sm, hb, w0)
     xs = np.full(X0.size, max(np.max(np.abs(X0)), 1e-12))
 
     def fun(x, w, need_w=True):
@@ -275,6 +270,31 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
                      completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
                      stability_computed=cfg.stability, extra={"steps_rejected": br.steps_rejected}, states=states,
                      critical=np.array(crit))
+
+
+def _hb_start(sm: SteadyModel, hb: HBModel, w0: float):
+    """The converged HB state at the first frequency.  start = "linear": from the linear guess, falling back
+    on 60 periods integrated from rest; start = "time": from ``start_periods`` periods (of the
+    subharmonic response) integrated from the model's initial state x0/v0 -- the way onto a branch that
+    the linear guess does not lead to (a 1/nu subharmonic, textbook §8.4, or the upper branch of a fold)."""
+    cfg = sm.cfg
+    p0 = sm.problem0
+    if cfg.start == "time":
+        y0 = np.concatenate([p0.q0, p0.v0])
+        try:
+            return hb.solve(time_guess(hb, w0, periods=cfg.start_periods, y0=y0), w0)[0]
+        except (SolverError, np.linalg.LinAlgError) as exc:
+            raise SolverError(f"continuation cannot start at omega = {w0!r}: no HB convergence from the state "
+                              f"integrated over {cfg.start_periods} periods from x0/v0 ({exc}); integrate longer "
+                              "(start_periods) or start nearer the branch") from exc
+    try:
+        return hb.solve(hb.linear_guess(w0), w0)[0]
+    except (SolverError, np.linalg.LinAlgError):
+        try:       # fall back on a time-integrated start (same model, 60 periods from rest)
+            return hb.solve(time_guess(hb, w0), w0)[0]
+        except (SolverError, np.linalg.LinAlgError) as exc:
+            raise SolverError(f"continuation cannot start at omega = {w0!r} (no HB convergence from the "
+                              f"linear or the time-integrated guess): {exc}") from exc
 
 
 def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.optimize import brentq
+from ..errors import ModelError
 
 
 def hl_cubic(c0: float, xi: float, A):
@@ -98,3 +99,20 @@ def energy_balance_amplitude(F0: float, omega: float, viscous: float = 0.0, coul
     if a3 == 0:
         return -a1 / a2 if a2 > 0 else float("inf")
     return float((-a2 + np.sqrt(a2 * a2 - 4 * a3 * a1)) / (2 * a3))
+
+
+def subharmonic_third(k0: float, xi: float, omega: float, a: float = 1.0) -> tuple[float, float, float]:
+    """The textbook's estimate of the 1/3 subharmonic of q'' + 2 n0 q' + k0^2 q (1 + xi q^2) = (F3/a) cos 3 omega t
+    (§8.4): the amplitude on the backbone (8.33) ``A1 = 2 sqrt((omega^2 - k0^2) / (3 xi k0^2))``, the third
+    harmonic's share (8.28) ``alpha = 0.25 xi k0^2 A1^2 / (9 k^2(A1) - k0^2)`` with k(A1) = omega, and the
+    threshold (8.32) per unit force ``psi*/F3 = 6 pi alpha / (a k0^2 A1 (1 + 0.5 xi A1^2))``: the subharmonic
+    can exist only for a dissipation coefficient psi < psi*.  (8.28) follows from the corrected second line of
+    (8.27), whose sign before 0.25 xi k0^2 A1^2 (A1 + 6 A3) is printed '+' (the harmonic balance gives '-').
+    Returns (A1, alpha, psi*/F3); omega must lie above k0 (hardening, xi > 0) for a real A1."""
+    if not (xi > 0 and omega > k0 > 0 and a > 0):
+        raise ModelError("subharmonic_third", "omega", omega,
+                         f"omega > k0 = {k0!r} with xi > 0 and a > 0 (a point of the hardening backbone)")
+    A1 = 2.0 * np.sqrt((omega ** 2 - k0 ** 2) / (3.0 * xi * k0 ** 2))
+    alpha = 0.25 * xi * k0 ** 2 * A1 ** 2 / (9.0 * omega ** 2 - k0 ** 2)
+    psi_per_F3 = 6.0 * np.pi * alpha / (a * k0 ** 2 * A1 * (1.0 + 0.5 * xi * A1 ** 2))
+    return float(A1), float(alpha), float(psi_per_F3)

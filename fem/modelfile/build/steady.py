@@ -10,4 +10,5 @@ def steady_settings(t) -> SteadySettings:
                           subharmonic=t.subharmonic, samples=t.samples, regularisation=t.regularisation,
                           stability=t.stability, ds=t.ds, ds_max=t.ds_max, ds_min=t.ds_min, max_steps=t.max_steps,
                           steps_per_period=t.steps_per_period, response_body=r.body, response_element=r.element,
-                          measure=r.measure, scale=r.scale)
+                          measure=r.measure, scale=r.scale, start=t.start,
+                          start_periods=t.start_periods)

@@ -64,6 +64,11 @@ class Steady(Table):
     """Continuation step limit."""
     steps_per_period: Count = 48
     """Shooting: step limit of the event-driven integrator per period."""
+    start: Literal["linear", "time"] = "linear"
+    """HB: the first point from the "linear" guess, or from a "time" integration of start_periods periods
+    starting at the bodies' x0/v0 (the way onto a subharmonic branch, textbook §8.4)."""
+    start_periods: Annotated[int, Field(ge=1, le=5_000)] = 100
+    """HB, start = "time": response periods (forcing periods x subharmonic) integrated before HB."""
 
     @model_validator(mode="after")
     def _range(self):
@@ -74,6 +79,8 @@ class Steady(Table):
             rule("omega" if self.omega is not None else "z", rng, "a non-empty range (start != stop)")
         if self.z is not None and self.omega_ref is None:
             rule("omega_ref", None, "the reference frequency (rad/s) of z = omega / omega_ref (required key missing)")
+        if self.start == "time" and self.method != "hb":
+            rule("start", self.start, '"linear" with method = "shooting" (a time start is an HB option)')
         if self.samples is not None and self.samples < 4 * self.harmonics + 2:
             rule("samples", self.samples, f"at least 4 harmonics + 2 = {4 * self.harmonics + 2}")
         return self
