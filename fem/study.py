@@ -180,7 +180,14 @@ class Study:
         tol = an.tolerance if isinstance(an, ModalAnalysis) else 1e-5
         if shift is None and isinstance(an, ModalAnalysis):
             shift = an.shift
-        return modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+        result = modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+        motors = [t.name or f"motor{i}" for i, t in enumerate(getattr(self.doc, "motor", None) or (), 1)]
+        if motors:
+            result.warnings.append(f"the motor(s) {', '.join(motors)} are not part of these undamped modes of the "
+                                   "mechanical drive (a motor adds damping, not stiffness or inertia): the drive's "
+                                   "eigenvalues with the motor torque as a state are discrete.motion.motor.motor_modes; "
+                                   "drivefem forced includes the motor's complex stiffness")
+        return result
 
     def is_steady(self) -> bool:
         """Whether ``forced`` means the nonlinear amplitude-frequency curve of ``[steady]``."""
@@ -215,10 +222,27 @@ class Study:
         from discrete.linear import harmonic_response
 
         system = self.linear_system()
+        if self.kind == "lumped" and getattr(self.doc, "motor", None):
+            system = self._with_motors(system)
         spec = build_linear.forced_spec(self.doc, system)
         return harmonic_response(system, spec.omegas, force=spec.force, base_motion=spec.base_motion,
                                  damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
                                  method=spec.method, n_modes=spec.n_modes)
+
+    def _with_motors(self, system):
+        """The lumped linear system with every [[motor]]'s complex stiffness to ground along its coordinate
+        (the Maxwell element of (10.65); discrete.motion.motor.with_motor_along)."""
+        from discrete.errors import SolverError
+        from discrete.motion.motor import with_motor_along
+
+        prob = self.problem_spec().problem()
+        if [str(n) for n in prob.names] != [str(n) for n in system.dof_name]:
+            raise SolverError("the motor's coordinate and the linear system disagree on the DOFs "
+                              f"({list(prob.names)} vs {list(system.dof_name)})")
+        for el in prob.elements:
+            if el.kind == "motor":
+                system = with_motor_along(system, el.g, el.omega0, el.nu, el.T, name=el.name)
+        return system
 
     def _drive_delta(self) -> tuple[float, str]:
         d = self.doc.damping

@@ -21,6 +21,7 @@ PINNED = {
     "parametric_drive.toml": ["parametric_model_file"],
     "cam_clearance.toml": ["timedomain_cam_follower", "timedomain_cam_clearance"],
     "motor_runup.toml": ["timedomain_motor_runup"],
+    "motor_drive_forced.toml": ["motor-drive-forced-file"],
     "discrete_bouncing_ball.toml": ["discrete_impact_ball"],
     "discrete_ch8_quasi_harmonic.toml": ["discrete_ch8_quasi_harmonic"],
     "discrete_ch8_relaxation.toml": ["discrete_ch8_relaxation", "discrete_ch8_critical_speed"],

@@ -93,3 +93,21 @@ def test_bad_input_names_the_key():
         with_motor(driven, driven.dof_index(name="d"), m)
     with pytest.raises(ModelError, match="dof"):
         motor_modes(driven, 7, m)
+
+
+def test_model_file_motor_in_forced_and_modal_warning():
+    """drivefem forced on a lumped file with a [[motor]] includes its complex stiffness (the rotor is held by the
+    speed characteristic: the low-frequency response stays finite); modal says the motor is not in its modes."""
+    from fem.modelfile.source import read_toml
+    from fem.study import Study
+    from validation.examples import EXAMPLES
+
+    doc = read_toml(EXAMPLES / "motor_drive_forced.toml")
+    with_motor_r = Study.parse(doc).forced().response[:, 0]
+    bare = dict(doc)
+    bare.pop("motor")
+    without = Study.parse(bare).forced().response[:, 0]
+    assert abs(with_motor_r[0]) == pytest.approx(0.465335, rel=2e-6)      # digest §10.6 at omega = 1
+    assert abs(without[0]) > 2 * abs(with_motor_r[0])                    # free drive: ~1/(2 J omega^2)
+    modes = Study.parse(doc).modal(2)
+    assert any("motor" in w and "motor_modes" in w for w in modes.warnings)

@@ -170,24 +170,39 @@ def with_motor(system: LinearSystem, dof: int, motor: DynamicMotor) -> LinearSys
     """A copy of ``system`` with the motor's Maxwell element between ground and the rotor DOF ``dof``:
     one extra DOF z (no inertia), spring c from z to the rotor, damper b from z to ground (10.65).
     For harmonic analysis only (the extra DOF has no mass)."""
-    dof = _dof(system, dof)
+    g = np.zeros(system.n_dofs)
+    g[_dof(system, dof)] = 1.0
+    return with_motor_along(system, g, motor.omega0, motor.nu, motor.T)
+
+
+def with_motor_along(system: LinearSystem, g, omega0: float, nu: float, T: float,
+                     name: str = "motor") -> LinearSystem:
+    """A copy of ``system`` with a motor acting along the coordinate s = g . q (a [[motor]] of a model file):
+    for T > 0 the Maxwell element of (10.65) -- an extra massless DOF z, spring c = 1/(nu omega0 T) between s
+    and z, damper b = 1/(nu omega0) from z to ground, i.e. the complex stiffness Z = i omega b/(1 + i omega T)
+    along s; for T = 0 (the static characteristic) the damper b along s itself.  For harmonic analysis only."""
+    g = np.asarray(g, float).ravel()
     n = system.n_dofs
-    z = n
+    if g.shape != (n,) or not np.all(np.isfinite(g)) or not np.any(g):
+        raise ModelError(WHERE, "g", f"shape {g.shape}", f"a finite, nonzero coordinate vector of {n} entries")
+    b = 1.0 / (_pos(nu, "nu") * _pos(omega0, "omega0"))
+    gg = sp.csr_matrix(np.outer(g, g))
+    if T == 0:
+        return LinearSystem(M=system.M, K=system.K, C=system.C + b * gg, H=system.H, G=system.G,
+                            dof_field=system.dof_field, dof_x=system.dof_x, dof_name=system.dof_name,
+                            constrained=system.constrained, rigid_modes=None, title=system.title,
+                            physics=system.physics)
+    c = b / _pos(T, "T")
+    ge = sp.csr_matrix(np.append(g, -1.0)[:, None])
 
     def grow(A):
-        A = sp.lil_matrix(sp.block_diag([A, sp.csr_matrix((1, 1))]))
-        return A
+        return sp.block_diag([A, sp.csr_matrix((1, 1))], format="csr")
 
-    K, C = grow(system.K), grow(system.C)
-    c, b = motor.c, motor.b
-    K[dof, dof] += c
-    K[z, z] += c
-    K[dof, z] -= c
-    K[z, dof] -= c
-    C[z, z] += b
-    return LinearSystem(M=grow(system.M).tocsr(), K=K.tocsr(), C=C.tocsr(), H=grow(system.H).tocsr(),
-                        G=grow(system.G).tocsr(), dof_field=np.append(system.dof_field, "motor"),
-                        dof_x=np.append(system.dof_x, np.nan), dof_name=np.append(system.dof_name, "motor_maxwell"),
+    K = grow(system.K) + c * (ge @ ge.T)
+    C = grow(system.C) + sp.csr_matrix(([b], ([n], [n])), shape=(n + 1, n + 1))
+    return LinearSystem(M=grow(system.M), K=K.tocsr(), C=C.tocsr(), H=grow(system.H),
+                        G=grow(system.G), dof_field=np.append(system.dof_field, "motor"),
+                        dof_x=np.append(system.dof_x, np.nan), dof_name=np.append(system.dof_name, f"{name}_maxwell"),
                         constrained=system.constrained, rigid_modes=None, title=system.title, physics=system.physics)
 
 

@@ -177,3 +177,35 @@ def motor_drive():
                     out.append(check("motor-drive-10-6", "digest §10.6 spot values", f"|M_D| at omega = {w:g}", v,
                                      abs(MD[j]), tol))
     return out
+
+
+@case("motor-drive-forced-file", group="motor")
+def motor_drive_forced_file():
+    """The §10.6 drive (h = 1) as a model file, examples/motor_drive_forced.toml: ``drivefem forced`` adds the
+    [[motor]]'s complex stiffness Z = i omega b/(1 + i omega T) along its coordinate (discrete.motion.motor.
+    with_motor_along).  The load's response against the dense 2x2 solve with Z (1e-12: the same linear
+    system, round-off), the digest's spot values (half a printed digit), and with T = 0 (the static
+    characteristic: Z = i omega b, a damper to ground) against the same dense solve with T = 0."""
+    from fem.modelfile.source import read_toml
+    from fem.study import Study
+    from validation.examples import EXAMPLES
+
+    out = []
+    doc = read_toml(EXAMPLES / "motor_drive_forced.toml")
+    J0, J1, c1, d1 = 0.224, 0.224, 5040.0, 0.02
+    for T in (0.043, 0.0):
+        d = dict(doc)
+        d["motor"] = [dict(doc["motor"][0], T=T)]
+        r = Study.parse(d).forced()
+        ws = np.asarray(r.omega_rad_s, float)
+        a = r.response[:, 0]
+        dense = np.array([ref.drive_forced(w, 157.0, 3e-3, T, J0, J1, c1, d1)[1] for w in ws])
+        out.append(check("motor-drive-forced-file", "dense solve with Z(omega)", f"T = {T:g}: max |a1 - a1_dense|/|a1_dense|",
+                         0.0, float(np.max(np.abs(a - dense) / np.abs(dense))), 1e-12, scale=1.0))
+        if T > 0:
+            for w, txt in ((50.0, "8.77999e-4"), (212.132, "1.22174e-3"), (1.0, "0.465335")):
+                v, tol = printed(txt)
+                j = int(np.argmin(np.abs(ws - w)))
+                out.append(check("motor-drive-forced-file", "digest §10.6 spot values", f"|a1| at omega = {w:g}", v,
+                                 abs(a[j]), tol))
+    return out
