@@ -28,7 +28,7 @@ PINNED = {
     "discrete_coulomb_decay.toml": ["discrete_coulomb_decay"],
     "discrete_gap_backlash.toml": ["discrete_gap_exact", "discrete_gap_arctan"],
     "discrete_seed000_stick_slip.toml": ["discrete_seed000_stick_slip"],
-    "discrete_seed004_variable_mass.toml": ["discrete_seed004_tables"],
+    "discrete_seed004_variable_mass.toml": ["discrete_seed004_tables", "discrete_seed004_claims"],
     "discrete_seed004_weight_friction.toml": ["discrete_seed004_tables"],
     "discrete_strand_spool.toml": ["discrete_one_sided_strand"],
     "drive_continuum.toml": ["drives-forced"],
