@@ -57,3 +57,24 @@ def seed003_amplitude(m: float, k: float, p: float, F: float, R: float) -> float
     """Equivalent-damping amplitude (6)/(12): sqrt(F^2 - (4R/pi)^2) / |k - m p^2| (nan if F <= 4R/pi)."""
     d = F ** 2 - (4 * R / math.pi) ** 2
     return math.sqrt(d) / abs(k - m * p ** 2) if d > 0 else float("nan")
+
+
+def seed003_printed_factor(example: str, l: float = 1.0, i: int = 1) -> float:
+    """R_printed / R of mode i: the seed replaces the friction's work 4 A int q |X_i| dx by the work of the
+    i-th term of the friction's sine series, 4 A int a_i X_i dx, with a_i = 4 q/(pi (2i - 1)) (rod, shaft:
+    X_i = sin((2i - 1) pi x/2l)) or 4 q/(i pi) for odd i (beam: X_i = sin(i pi x/l)) -- the step behind its
+    printed (9).  Both integrals are evaluated here by quadrature; for i = 1 the ratio is 4/pi (the printed
+    friction of the first mode is too large by 4/pi; for higher modes it is too small: 4/(pi (2i - 1)^2))."""
+    from scipy.integrate import quad
+
+    md = seed003_modes(example, l, 1.0, 1.0, i)
+    if example in ("rod", "shaft"):
+        a = 4.0 / (math.pi * (2 * i - 1))
+    else:
+        a = 4.0 / (i * math.pi) if i % 2 else 0.0
+    X = md["X"]
+    half_waves = (2 * i - 1) if example in ("rod", "shaft") else 2 * i
+    pts = [l * k / half_waves for k in range(1, half_waves)]
+    work = quad(lambda x: a * float(X(x)), 0, l, points=pts or None, epsabs=0, epsrel=1e-13, limit=200)[0]
+    absw = quad(lambda x: abs(float(X(x))), 0, l, points=pts or None, epsabs=0, epsrel=1e-13, limit=200)[0]
+    return work / absw
