@@ -39,3 +39,32 @@ def plot_afc(result, path, ax=None, label=None) -> None:
         Path(path).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=120)
         plt.close(fig)
+
+
+def plot_phase_portraits(panels, path) -> None:
+    """PNG of phase portraits side by side: ``panels`` is a list of dicts with ``title``, ``phi``, ``phidot``
+    (one orbit) and ``slack`` (bool per sample: drawn red, the taut parts blue)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n = len(panels)
+    cols = 2 if n > 1 else 1
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.0 * rows), squeeze=False)
+    for ax, p in zip(axes.ravel(), panels):
+        phi, v, slack = np.asarray(p["phi"]), np.asarray(p["phidot"]), np.asarray(p["slack"], bool)
+        ax.plot(phi, np.where(slack, np.nan, v), "-", color="tab:blue", lw=1.2, label="taut")
+        if slack.any():
+            ax.plot(phi, np.where(slack, v, np.nan), "-", color="tab:red", lw=1.6, label="zero tension")
+        ax.axvline(0.0, color="0.6", lw=0.8)
+        ax.set_title(p["title"], fontsize=9)
+        ax.set_xlabel(p.get("xlabel", "phi [rad]"))
+        ax.set_ylabel("phi' [rad/s]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper right")
+    for ax in axes.ravel()[n:]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=110)
+    plt.close(fig)
