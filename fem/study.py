@@ -225,6 +225,13 @@ class Study:
         if self.kind == "lumped" and getattr(self.doc, "motor", None):
             system = self._with_motors(system)
         spec = build_linear.forced_spec(self.doc, system)
+        if spec.period is not None:
+            from discrete.linear.periodic_forced import periodic_forced
+
+            return periodic_forced(system, spec.period, spec.harmonics, shaped=spec.waveforms,
+                                   force=spec.force if np.any(spec.force) else None, base_motion=spec.base_motion,
+                                   damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
+                                   method=spec.method, n_modes=spec.n_modes)
         return harmonic_response(system, spec.omegas, force=spec.force, base_motion=spec.base_motion,
                                  damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
                                  method=spec.method, n_modes=spec.n_modes)

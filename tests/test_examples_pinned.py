@@ -22,6 +22,7 @@ PINNED = {
     "cam_clearance.toml": ["timedomain_cam_follower", "timedomain_cam_clearance"],
     "motor_runup.toml": ["timedomain_motor_runup"],
     "motor_drive_forced.toml": ["motor-drive-forced-file"],
+    "forced_periodic_load.toml": ["forced-periodic-rectangular"],
     "discrete_bouncing_ball.toml": ["discrete_impact_ball"],
     "discrete_ch8_quasi_harmonic.toml": ["discrete_ch8_quasi_harmonic"],
     "discrete_ch8_relaxation.toml": ["discrete_ch8_relaxation", "discrete_ch8_critical_speed"],

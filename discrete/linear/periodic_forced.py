@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import ModelError
 from ..linear_system import LinearSystem
 from ..motion.fourier import FourierSeries
-from .harmonic import Damping, harmonic_response
+from .harmonic import Damping, HarmonicResult, harmonic_response
 
 WHERE = "periodic load"
 
@@ -140,3 +140,60 @@ def periodic_response(system: LinearSystem, *, loads: list[PeriodicLoad] | tuple
     return PeriodicResponse(omega_rad_s=w0, amplitudes=Q, outputs=[system.label(i) for i in outputs],
                             method=f"Fourier superposition of {H} harmonics; {method_name}", damping=damp_name,
                             series_errors=errs)
+
+
+@dataclass
+class PeriodicForcedResult(HarmonicResult):
+    """The steady state under periodic loads in the shape of a harmonic result: ``omega_rad_s`` are the
+    harmonics j w (j = 0..H) and ``response`` their complex amplitudes Q_j at the outputs, so that
+    q(t) = Re sum_j Q_j e^{i j w t}; plus the period, one period of samples and the peak |q|."""
+
+    period: float = 0.0
+    t: np.ndarray | None = None            # one period of samples
+    q: np.ndarray | None = None            # (samples, outputs)
+    peak: np.ndarray | None = None         # max |q| over a period per output (dense: max(8192, 32 H) instants)
+    series_errors: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        d = super().to_dict()
+        d["periodic"] = {"period": self.period, "harmonics": int(self.omega_rad_s.size - 1),
+                         "peak": self.peak.tolist(), "t": self.t.tolist(), "q": self.q.T.tolist(),
+                         "series_errors": list(self.series_errors)}
+        return d
+
+
+def _harmonic_series(c: complex, period: float, harmonics: int) -> FourierSeries:
+    """The series of Re(c e^{i w t}) (w = 2 pi / period): one harmonic, exact."""
+    cos, sin = np.zeros(harmonics), np.zeros(harmonics)
+    cos[0], sin[0] = c.real, -c.imag
+    return FourierSeries(period=period, mean=0.0, cos=cos, sin=sin, samples=0, max_error=0.0, rms_error=0.0,
+                         aliasing_error=0.0, scale=abs(c))
+
+
+def periodic_forced(system: LinearSystem, period: float, harmonics: int, *, shaped=(), force=None,
+                    base_motion: dict | None = None, damping: Damping | None = None, outputs: list[int] | None = None,
+                    method: str = "direct", n_modes: int | None = None, samples: int = 512) -> PeriodicForcedResult:
+    """Steady state under periodic loads of ``period``: ``shaped`` = [(DOF, amplitude, shift, w)] loads
+    amplitude * w(t/period + shift) (:class:`discrete.motion.waveforms.Waveform`: exact series), ``force`` complex
+    amplitudes of harmonic loads at the fundamental, ``base_motion`` {held DOF: complex amplitude} at the
+    fundamental; Fourier superposition of ``harmonics`` harmonics (:func:`periodic_response`)."""
+    loads = []
+    n = system.n_dofs
+    for dof, amp, shift, wave in shaped:
+        vec = np.zeros(n)
+        vec[int(dof)] = 1.0
+        loads.append(PeriodicLoad(vec, wave.series(period, int(harmonics), amp, shift)))
+    if force is not None:
+        for dof in np.flatnonzero(force):
+            vec = np.zeros(n)
+            vec[dof] = 1.0
+            loads.append(PeriodicLoad(vec, _harmonic_series(complex(force[dof]), period, int(harmonics))))
+    base = {int(d): _harmonic_series(complex(c), period, int(harmonics)) for d, c in (base_motion or {}).items()}
+    res = periodic_response(system, loads=loads, base_motion=base, damping=damping, outputs=outputs, method=method,
+                            n_modes=n_modes, harmonics=int(harmonics))
+    t = period * np.arange(samples) / samples
+    H = res.harmonics
+    return PeriodicForcedResult(omega_rad_s=np.arange(H + 1) * res.omega_rad_s, response=res.amplitudes,
+                                outputs=res.outputs, method=res.method, damping=res.damping,
+                                warnings=list(res.warnings), period=float(period), t=t, q=res(t),
+                                peak=res.peak(samples=max(8192, 32 * H)), series_errors=res.series_errors)

@@ -99,6 +99,10 @@ def forced(args) -> int:
     data = contract.forced_data(study, res)
     _emit(args, "forced", study, data)
     tables.forced_table(study, res, all_rows=args.all)
+    if "periodic" in data:
+        per = data["periodic"]
+        print(f"periodic load, period {per['period']:g} s, {per['harmonics']} harmonics: peak |q| over a period "
+              + ", ".join(f"{o} {p:.6g}" for o, p in zip(data["outputs"], per["peak"])))
     steady = data["steady"]
     if args.csv:
         table = columns.afc(res) if steady else (columns.drive_forced(res) if study.kind == "drive"

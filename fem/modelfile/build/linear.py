@@ -4,11 +4,12 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from discrete.errors import ModelError
+from discrete.motion.waveforms import unit_waveform
 from discrete.linear import Damping
 from discrete.linear_system import LinearSystem
 
@@ -40,6 +41,9 @@ class ForcedSpec:
     force: np.ndarray
     base_motion: dict
     outputs: list[int]
+    period: float | None = None                        # periodic loads: the period, s
+    harmonics: int = 0
+    waveforms: list = field(default_factory=list)      # [(DOF, amplitude, phase fraction, unit shape w(s))]
 
 
 def _locate(system: LinearSystem, t, where: str, lumped_key: str) -> int:
@@ -63,11 +67,17 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
     an = doc.analysis
     force = np.zeros(system.n_dofs, dtype=complex)
     held = set(system.constrained.tolist())
+    waves = []
     for i, t in enumerate(doc.load, 1):
         w = f"[[load]] #{i}"
         dof = _locate(system, t, w, "body")
         if dof in held:
             raise ModelError(w, "x", t.x if t.x is not None else t.body, "a free DOF (this one is held by a support/driver)")
+        if t.waveform is not None:
+            wf = t.waveform
+            waves.append((dof, t.amplitude, t.phase_deg / 360.0,
+                          unit_waveform(wf.kind, duty=wf.duty, s_points=wf.t, values=wf.value)))
+            continue
         force[dof] += t.amplitude * np.exp(1j * math.radians(t.phase_deg))
     base = {}
     for i, t in enumerate(doc.base_motion, 1):
@@ -79,12 +89,15 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
         base[dof] = t.amplitude * np.exp(1j * math.radians(t.phase_deg))
     outputs = [_locate(system, t, f"[[response]] #{i}", "body") for i, t in enumerate(doc.response, 1)]
     if not outputs:
-        outputs = sorted(set(np.flatnonzero(force).tolist()))
+        outputs = sorted(set(np.flatnonzero(force).tolist()) | {w[0] for w in waves})
     if not outputs:  # base motion only: every body, or the free end of the primary field
         if system.physics == "lumped":
             outputs = system.free.tolist()
         else:
             prim = system.free[system.dof_field[system.free] == system.dof_field[0]]
             outputs = [int(prim[np.argmax(np.abs(system.dof_x[prim] - system.dof_x[system.constrained].mean()))])]
+    if an.period is not None:
+        return ForcedSpec(omegas=np.zeros(0), method=an.method, n_modes=an.modes, force=force, base_motion=base,
+                          outputs=outputs, period=float(an.period), harmonics=int(an.harmonics), waveforms=waves)
     return ForcedSpec(omegas=frequencies(an), method=an.method, n_modes=an.modes, force=force, base_motion=base,
                       outputs=outputs)

@@ -62,6 +62,11 @@ class ForcedAnalysis(Table):
     """Modes of the modal superposition (default min(20, free DOFs))."""
     convergence_n: Annotated[list[Count], Field(min_length=1)] | None = None
     """Drive files: mechanism counts n of the convergence study."""
+    period: Positive | None = None
+    """Periodic non-harmonic loads ([[load]] waveform): the period T, s -- the response is the Fourier
+    superposition of the harmonics j 2 pi/T, j = 0..harmonics (textbook §5.8), instead of a frequency list."""
+    harmonics: Annotated[int, Field(ge=1, le=2000)] = 64
+    """With period: the number of harmonics of the superposition."""
 
     @property
     def frequency_keys(self) -> list[str]:
@@ -275,13 +280,49 @@ class Excitation(Table):
         return self
 
 
+class Waveform(Table):
+    """A periodic load's shape over one period (``[analysis] period``): the load is amplitude * w(t/T +
+    phase_deg/360) with the unit shape w: "square" (+1 for a fraction duty of the period, then -1),
+    "sawtooth" (2 s - 1), "triangle" (1 - 4 |s - 1/2|) or "table" (piecewise linear through t, value)."""
+
+    kind: Literal["square", "sawtooth", "triangle", "table"]
+    """The unit shape."""
+    duty: Annotated[float, Field(gt=0, lt=1)] | None = None
+    """square: the fraction of the period at +1 (default 0.5)."""
+    t: Annotated[list[float], Field(min_length=2)] | None = None
+    """table: instants as fractions of the period, increasing from 0 to 1."""
+    value: Annotated[list[float], Field(min_length=2)] | None = None
+    """table: the shape's values at t (value[0] == value[-1])."""
+
+    @model_validator(mode="after")
+    def _shape(self):
+        if self.duty is not None and self.kind != "square":
+            rule("duty", self.duty, 'only with kind = "square"')
+        if self.kind == "table":
+            if self.t is None or self.value is None:
+                rule("t", self.t, 'kind = "table" needs t = [0, .., 1] (fractions of the period) and value = [..]')
+            if len(self.t) != len(self.value):
+                rule("value", f"{len(self.value)} values", f"one value per t ({len(self.t)})")
+            if self.t[0] != 0 or self.t[-1] != 1 or any(b <= a for a, b in zip(self.t, self.t[1:])):
+                rule("t", self.t, "fractions of the period increasing from 0 to 1")
+            if abs(self.value[0] - self.value[-1]) > 1e-12 * max(1.0, max(map(abs, self.value))):
+                rule("value", [self.value[0], self.value[-1]], "value[0] == value[-1] (one period)")
+        elif self.t is not None or self.value is not None:
+            rule("t" if self.t is not None else "value", self.t if self.t is not None else self.value,
+                 'only with kind = "table"')
+        return self
+
+
 class Load(Excitation):
-    """``[[load]]``: harmonic force amplitude * exp(i phase) at a DOF (forced analysis)."""
+    """``[[load]]``: harmonic force amplitude * exp(i phase) at a DOF (forced analysis), or with a
+    ``waveform`` a periodic non-harmonic load of the period ``[analysis] period``."""
 
     amplitude: float
     """Force or moment amplitude."""
     phase_deg: float = 0.0
-    """Phase, degrees."""
+    """Phase, degrees (with a waveform: the shift of its period, 360 = one period)."""
+    waveform: Waveform | None = None
+    """A periodic non-harmonic shape { kind = "square" | "sawtooth" | "triangle" | "table", .. }."""
 
 
 class BaseMotion(Table):

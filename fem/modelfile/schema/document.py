@@ -113,6 +113,18 @@ def _frequencies_rule(doc) -> None:
     if not isinstance(an, ForcedAnalysis):
         return
     keys = an.frequency_keys
+    waves = [i for i, t in enumerate(getattr(doc, "load", ()), 1) if t.waveform is not None]
+    if an.period is not None:
+        if getattr(doc, "steady", None) is not None:
+            rule("analysis.period", an.period, "no period with a [steady] table (periodic loads are linear analysis)")
+        if keys:
+            rule("analysis." + keys[0], getattr(an, keys[0]), "no frequency list with period = .. (the frequencies "
+                 "are the harmonics j 2 pi / period)")
+        return
+    if waves:
+        rule(f"load.{waves[0]}.waveform", "a waveform", "[analysis] period = .. (s): a periodic load needs the period")
+    if an.given("harmonics"):
+        rule("analysis.harmonics", an.harmonics, "only with period = .. (periodic loads)")
     if getattr(doc, "steady", None) is not None:
         if keys:
             rule("analysis." + keys[0], getattr(an, keys[0]), "no frequency list with a [steady] table "
@@ -164,6 +176,14 @@ class DriveFile(ModelFileBase, LinearTables):
 
     drive: Drive
     """[drive]: n identical mechanisms on a main shaft."""
+
+    @model_validator(mode="after")
+    def _no_period(self):
+        an = self.analysis
+        if isinstance(an, ForcedAnalysis) and an.period is not None:
+            rule("analysis.period", an.period, "a frequency list (periodic loads with period = .. are an analysis of "
+                 "FE and lumped files)")
+        return self
 
 
 class RotorFile(ModelFileBase):
