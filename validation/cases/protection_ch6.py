@@ -327,3 +327,31 @@ def protection_quasi_constant():
                      bool(np.allclose(QuasiConstantPlatform.synthesised(10.0, 2e4, 5e4, 0.01).amplitude(w), plat.A_star,
                                       rtol=1e-12))))
     return out
+
+
+@case("protection-unbalance-file", group="protection")
+def protection_unbalance_file():
+    """The same (5.66) through a model file: a [[load]] with scaling = "omega2" and amplitude m e drives the
+    mass-spring model; r/e = |e + Delta|/e at the digest's s values (half a printed digit), and the response
+    equal to the Python unbalance_response to 1e-13 (the same solve, scaled by omega^2)."""
+    from fem.study import Study
+
+    out = []
+    m, c, e = 2.0, 800.0, 1e-3
+    ws = math.sqrt(c / m)
+    table = ((0.5, "1.33333"), (0.9, "5.26316"), (1.1, "4.76190"), (2.0, "0.33333"), (5.0, "0.041667"))
+    doc = {"title": "unbalanced disc on a spring", "body": [{"name": "disc", "inertia": m}],
+           "spring": [{"between": ["ground", "disc"], "k": c}],
+           "load": [{"body": "disc", "amplitude": m * e, "scaling": "omega2"}],
+           "analysis": {"type": "forced", "omega_rad_s": [s * ws for s, _ in table]}}
+    r = Study.parse(doc).forced()
+    _, ls = _sdof(m, c)
+    ref, _ = unbalance_response(ls, [s * ws for s, _ in table], 0, m * e)
+    for (s, txt), D in zip(table, r.response[:, 0]):
+        v, tol = printed(txt)
+        out.append(check("protection-unbalance-file", "digest V5.12 (5.66)", f"r/e at s = {s:g} (model file)", v,
+                         abs(e + D) / e, max(tol, 1e-12)))
+    out.append(check("protection-unbalance-file", "unbalance_response (Python API)", "max |Delta - Delta_API| / |Delta_API|",
+                     0.0, float(np.max(np.abs(r.response[:, 0] - ref.response[:, 0]) / np.abs(ref.response[:, 0]))),
+                     1e-13, scale=1.0))
+    return out

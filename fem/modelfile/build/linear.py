@@ -44,6 +44,7 @@ class ForcedSpec:
     period: float | None = None                        # periodic loads: the period, s
     harmonics: int = 0
     waveforms: list = field(default_factory=list)      # [(DOF, amplitude, phase fraction, unit shape w(s))]
+    force_w2: np.ndarray | None = None                 # complex amplitudes of the loads ~ omega^2
 
 
 def _locate(system: LinearSystem, t, where: str, lumped_key: str) -> int:
@@ -66,6 +67,7 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
     """Frequencies, excitation and outputs of a linear forced analysis."""
     an = doc.analysis
     force = np.zeros(system.n_dofs, dtype=complex)
+    force_w2 = np.zeros(system.n_dofs, dtype=complex)          # loads amplitude * omega^2 (unbalance)
     held = set(system.constrained.tolist())
     waves = []
     for i, t in enumerate(doc.load, 1):
@@ -78,7 +80,8 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
             waves.append((dof, t.amplitude, t.phase_deg / 360.0,
                           unit_waveform(wf.kind, duty=wf.duty, s_points=wf.t, values=wf.value)))
             continue
-        force[dof] += t.amplitude * np.exp(1j * math.radians(t.phase_deg))
+        target = force_w2 if t.scaling == "omega2" else force
+        target[dof] += t.amplitude * np.exp(1j * math.radians(t.phase_deg))
     base = {}
     for i, t in enumerate(doc.base_motion, 1):
         w = f"[[base_motion]] #{i}"
@@ -89,7 +92,8 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
         base[dof] = t.amplitude * np.exp(1j * math.radians(t.phase_deg))
     outputs = [_locate(system, t, f"[[response]] #{i}", "body") for i, t in enumerate(doc.response, 1)]
     if not outputs:
-        outputs = sorted(set(np.flatnonzero(force).tolist()) | {w[0] for w in waves})
+        outputs = sorted(set(np.flatnonzero(force).tolist()) | set(np.flatnonzero(force_w2).tolist())
+                         | {w[0] for w in waves})
     if not outputs:  # base motion only: every body, or the free end of the primary field
         if system.physics == "lumped":
             outputs = system.free.tolist()
@@ -97,7 +101,10 @@ def forced_spec(doc, system: LinearSystem) -> ForcedSpec:
             prim = system.free[system.dof_field[system.free] == system.dof_field[0]]
             outputs = [int(prim[np.argmax(np.abs(system.dof_x[prim] - system.dof_x[system.constrained].mean()))])]
     if an.period is not None:
+        if np.any(force_w2):
+            raise ModelError("[[load]]", "scaling", "omega2", '"constant" with [analysis] period (a load ~ omega^2 has '
+                             "no single periodic shape)")
         return ForcedSpec(omegas=np.zeros(0), method=an.method, n_modes=an.modes, force=force, base_motion=base,
                           outputs=outputs, period=float(an.period), harmonics=int(an.harmonics), waveforms=waves)
     return ForcedSpec(omegas=frequencies(an), method=an.method, n_modes=an.modes, force=force, base_motion=base,
-                      outputs=outputs)
+                      outputs=outputs, force_w2=force_w2)

@@ -323,6 +323,15 @@ class Load(Excitation):
     """Phase, degrees (with a waveform: the shift of its period, 360 = one period)."""
     waveform: Waveform | None = None
     """A periodic non-harmonic shape { kind = "square" | "sawtooth" | "triangle" | "table", .. }."""
+    scaling: Literal["constant", "omega2"] = "constant"
+    """"omega2": a load proportional to the frequency squared, amplitude * omega^2 -- an unbalance with
+    amplitude = m e (kg m; textbook §5.12, §6.4); "constant": amplitude as given."""
+
+    @model_validator(mode="after")
+    def _scaling(self):
+        if self.scaling == "omega2" and self.waveform is not None:
+            rule("scaling", self.scaling, '"constant" with a waveform (a periodic load has one shape)')
+        return self
 
 
 class BaseMotion(Table):
