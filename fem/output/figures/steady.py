@@ -68,3 +68,21 @@ def plot_phase_portraits(panels, path) -> None:
     fig.tight_layout()
     fig.savefig(Path(path), dpi=110)
     plt.close(fig)
+
+
+def plot_orbit_overlay(curves, path, title: str = "", xlabel: str = "t [s]") -> None:
+    """PNG of several time series on one axis: ``curves`` = [(t, y, label, style)]."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    for t, y, label, style in curves:
+        ax.plot(t, y, style, lw=1.3, label=label)
+    ax.set_xlabel(xlabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(Path(path), dpi=110)
+    plt.close(fig)
