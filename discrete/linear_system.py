@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from . import checks
 from .errors import ModelError
 
 
@@ -59,25 +60,41 @@ class LinearSystem:
     physics: str = ""
 
     def __post_init__(self):
+        where = f"LinearSystem {self.title!r}" if self.title else "LinearSystem"
+        checks.real_matrix(where, "M", self.M, note="mass matrix")
         n = self.M.shape[0]
+        for name in ("K", "C", "H", "G"):
+            if getattr(self, name) is not None:
+                checks.real_matrix(where, name, getattr(self, name), (n, n),
+                                   note="K + i H: give the loss stiffness as the real matrix H" if name in "KH"
+                                   else None)
         self.M = _csr(self.M, n)
         self.K = _csr(self.K, n)
         self.C = _csr(self.C, n)
         self.H = _csr(self.H, n)
         self.G = _csr(self.G, n)
         check_finite(self.title or "model", M=self.M, K=self.K, C=self.C, H=self.H, G=self.G)
-        for name in ("K", "C", "H", "G"):
-            if getattr(self, name).shape != (n, n):
-                raise ValueError(f"LinearSystem: {name} has shape {getattr(self, name).shape}, expected {(n, n)}")
         self.dof_field = np.asarray(self.dof_field, dtype=object)
         if self.dof_field.shape != (n,):
-            raise ValueError(f"LinearSystem: dof_field has {self.dof_field.size} labels for {n} DOFs")
+            raise ModelError(where, "dof_field", f"{self.dof_field.size} labels", f"one label per DOF ({n})")
+        for key in ("dof_x", "dof_name"):
+            val = getattr(self, key)
+            if val is not None and np.shape(val) != (n,):
+                raise ModelError(where, key, f"shape {np.shape(val)}", f"one value per DOF ({n}) or None")
         self.dof_x = np.full(n, np.nan) if self.dof_x is None else np.asarray(self.dof_x, dtype=float)
         self.dof_name = (np.full(n, "", dtype=object) if self.dof_name is None
                          else np.asarray(self.dof_name, dtype=object))
-        self.constrained = np.unique(np.asarray(self.constrained, dtype=int))
+        con = np.asarray(self.constrained)
+        if con.size and (con.ndim != 1 or con.dtype.kind not in "iu" or con.min() < 0 or con.max() >= n):
+            raise ModelError(where, "constrained", con.tolist() if con.size <= 8 else f"array of shape {con.shape}",
+                             f"a list of integer DOF indices in [0, {n - 1}]")
+        self.constrained = np.unique(con.astype(int))
         if self.rigid_modes is not None:
-            self.rigid_modes = np.asarray(self.rigid_modes, dtype=float).reshape(n, -1)
+            R = np.asarray(self.rigid_modes)
+            if R.dtype.kind not in "iuf" or R.shape[:1] != (n,) or R.ndim > 2:
+                raise ModelError(where, "rigid_modes", f"shape {R.shape}",
+                                 f"real columns of length {n} (one per rigid-body mode) or None")
+            self.rigid_modes = R.astype(float).reshape(n, -1)
 
     # ------------------------------------------------------------------ DOFs
     @property

@@ -18,6 +18,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 
+from . import checks
 from .errors import ModelError
 from .linear_system import LinearSystem, check_finite
 
@@ -33,6 +34,14 @@ class Body:
     x0: float = 0.0
     v0: float = 0.0
 
+    def __post_init__(self):
+        where = f"[[body]] {self.name!r}"
+        if not isinstance(self.name, str) or not self.name:
+            raise ModelError("[[body]]", "name", self.name, "a non-empty name other than 'ground'")
+        self.inertia = checks.positive(where, "inertia", self.inertia, "mass (kg) or moment of inertia (kg m^2)")
+        for key in ("inertia_rate", "reactive", "x0", "v0"):
+            setattr(self, key, checks.finite(where, key, getattr(self, key)))
+
 
 @dataclass
 class Driver:
@@ -45,6 +54,18 @@ class Driver:
     phase: float = 0.0
     inertia: float = 0.0
     offset: float = 0.0
+
+    def __post_init__(self):
+        where = f"[[driver]] {self.name!r}"
+        if not isinstance(self.name, str) or not self.name:
+            raise ModelError("[[driver]]", "name", self.name, "a non-empty name other than 'ground'")
+        self.velocity = checks.optional(checks.finite, where, "velocity", self.velocity, "m/s or rad/s")
+        for key in ("amplitude", "phase", "offset"):
+            setattr(self, key, checks.finite(where, key, getattr(self, key)))
+        self.omega = checks.non_negative(where, "omega", self.omega, "angular frequency of the harmonic part, rad/s")
+        self.inertia = checks.non_negative(where, "inertia", self.inertia, "inertia of the driven coordinate")
+        if self.amplitude != 0 and self.omega == 0:
+            raise ModelError(where, "omega", self.omega, "a number > 0 with amplitude")
 
     def position(self, t):
         return self.offset + (self.velocity or 0.0) * t + self.amplitude * np.sin(self.omega * t + self.phase)
@@ -65,6 +86,24 @@ class Link:
     ratios: tuple[float, float] = (1.0, 1.0)
     psi: float = 0.0
 
+    def __post_init__(self):
+        where = f"link {self.between!r}"
+        self.between = _pair(where, self.between)
+        self.value = checks.non_negative(where, "value", self.value, "stiffness k of a spring or coefficient c "
+                                         "of a damper")
+        if isinstance(self.ratios, (str, bytes)) or np.ndim(self.ratios) != 1 or len(self.ratios) != 2:
+            raise ModelError(where, "ratios", self.ratios, "[r_a, r_b]: a list of 2 finite numbers")
+        self.ratios = tuple(checks.finite(where, "ratios", r, "[r_a, r_b]: a list of 2 finite numbers")
+                            for r in self.ratios)
+        self.psi = checks.non_negative(where, "psi", self.psi, "dissipation coefficient of the spring")
+
+
+def _pair(where: str, between) -> tuple:
+    if isinstance(between, (str, bytes)) or not hasattr(between, "__len__") or len(between) != 2 \
+            or not all(isinstance(n, str) for n in between):
+        raise ModelError(where, "between", between, "[a, b]: two names (bodies, drivers or 'ground')")
+    return tuple(between)
+
 
 @dataclass
 class Gear:
@@ -72,6 +111,13 @@ class Gear:
 
     between: tuple[str, str]
     ratio: float
+
+    def __post_init__(self):
+        where = f"[[gear]] {self.between!r}"
+        self.between = _pair(where, self.between)
+        self.ratio = checks.finite(where, "ratio", self.ratio, "the transmission ratio, non-zero")
+        if self.ratio == 0:
+            raise ModelError(where, "ratio", self.ratio, "a finite non-zero number")
 
 
 @dataclass
@@ -84,6 +130,16 @@ class LumpedModel:
     title: str = ""
 
     def __post_init__(self):
+        for key, cls in (("bodies", Body), ("drivers", Driver), ("springs", Link), ("dampers", Link),
+                         ("gears", Gear)):
+            items = getattr(self, key)
+            if isinstance(items, (str, bytes)) or not hasattr(items, "__iter__"):
+                raise ModelError("lumped model", key, items, f"a list of discrete.lumped.{cls.__name__}")
+            items = list(items)
+            for i, it in enumerate(items, 1):
+                if not isinstance(it, cls):
+                    raise ModelError(f"{key} #{i}", key, it, f"a discrete.lumped.{cls.__name__}")
+            setattr(self, key, items)
         names = [b.name for b in self.bodies] + [d.name for d in self.drivers]
         seen = set()
         for i, n in enumerate(names):
@@ -103,8 +159,8 @@ class LumpedModel:
                 for n in it.between:
                     if n not in allowed:
                         raise ModelError(where, "between", n, "one of " + ", ".join(map(repr, sorted(allowed))))
-                if kind != "gear" and it.value < 0:
-                    raise ModelError(where, "k" if kind == "spring" else "c", it.value, "a number >= 0")
+                if kind != "gear":
+                    checks.non_negative(where, "k" if kind == "spring" else "c", it.value)
         for i, g in enumerate(self.gears, 1):
             where = f"[[gear]] #{i}"
             if GROUND in g.between:

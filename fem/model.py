@@ -9,9 +9,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from discrete import checks
 from discrete.errors import ModelError
 
-from .sections import Material, Section
+from .sections import KAPPA, Material, Section
 
 PHYSICS = ("torsion", "axial", "bending")
 THEORIES = ("euler-bernoulli", "timoshenko")
@@ -38,6 +39,21 @@ class Segment:
     rho_extra: float = 0.0
     psi: float = 0.0
 
+    def __post_init__(self):
+        self.check("[[segment]]")
+
+    def check(self, where: str) -> None:
+        """The rules of a ``[[segment]]`` table (``where`` names it in messages)."""
+        self.length = checks.positive(where, "length", self.length, "length, m")
+        self.elements = checks.integer(where, "elements", self.elements, 1, "number of finite elements")
+        if not isinstance(self.section, Section):
+            raise ModelError(where, "section", self.section, "a fem.Section (Section.circle(d), Section.tube(d, di) "
+                             "or Section.explicit(A, I, J, Ip))")
+        if not isinstance(self.material, Material):
+            raise ModelError(where, "material", self.material, "a fem.Material(E, G, rho)")
+        self.rho_extra = checks.non_negative(where, "rho_extra", self.rho_extra, "extra distributed inertia per length")
+        self.psi = checks.non_negative(where, "psi", self.psi, "dissipation coefficient of the material")
+
 
 @dataclass
 class Support:
@@ -48,6 +64,15 @@ class Support:
     type: str = "clamped"
     k: float = 0.0
     kr: float = 0.0
+
+    def __post_init__(self):
+        self.check("[[support]]")
+
+    def check(self, where: str) -> None:
+        self.x = checks.finite(where, "x", self.x, "position along the shaft, m")
+        checks.choice(where, "type", self.type, ("clamped", "pinned", "spring"))
+        self.k = checks.non_negative(where, "k", self.k, "stiffness of a spring support")
+        self.kr = checks.non_negative(where, "kr", self.kr, "rotational stiffness of a spring support, N m/rad")
 
 
 @dataclass
@@ -60,6 +85,15 @@ class PointAttachment:
     inertia: float = 0.0
     k: float = 0.0
     kr: float = 0.0
+
+    def __post_init__(self):
+        self.check("[[point]]")
+
+    def check(self, where: str) -> None:
+        self.x = checks.finite(where, "x", self.x, "position along the shaft, m")
+        for key, note in (("mass", "mass, kg"), ("inertia", "moment of inertia, kg m^2"),
+                          ("k", "spring to ground"), ("kr", "rotational spring to ground, N m/rad")):
+            setattr(self, key, checks.non_negative(where, key, getattr(self, key), note))
 
 
 @dataclass
@@ -82,20 +116,31 @@ class ShaftModel:
             raise ModelError(where, "theory", self.theory, " | ".join(map(repr, THEORIES)))
         if self.mass not in MASS_KINDS:
             raise ModelError(where, "mass", self.mass, " | ".join(map(repr, MASS_KINDS)))
-        if self.order not in (1, 2):
+        if isinstance(self.order, (bool, np.bool_)) or not isinstance(self.order, (int, np.integer)) \
+                or self.order not in (1, 2):
             raise ModelError(where, "order", self.order, "1 (linear Lagrange) or 2 (quadratic Lagrange)")
+        if self.physics != "bending" and self.theory != "euler-bernoulli":
+            raise ModelError(where, "theory", self.theory, "theory applies only to physics = 'bending' "
+                             f"(this model: physics = {self.physics!r})")
+        if self.shear_coefficient is not None:
+            if self.physics != "bending" or self.theory != "timoshenko":
+                raise ModelError(where, "shear_coefficient", self.shear_coefficient,
+                                 "shear_coefficient applies only to Timoshenko bending models (None otherwise)")
+            self.shear_coefficient = checks.bounded(where, "shear_coefficient", self.shear_coefficient, *KAPPA,
+                                                    "Timoshenko shear coefficient kappa")
+        for key, cls, table in (("segments", Segment, "segment"), ("supports", Support, "support"),
+                                ("points", PointAttachment, "point")):
+            items = getattr(self, key)
+            if isinstance(items, (str, bytes)) or not hasattr(items, "__iter__"):
+                raise ModelError(where, table, items, f"a list of fem.{cls.__name__}")
+            items = list(items)
+            for i, it in enumerate(items, 1):
+                if not isinstance(it, cls):
+                    raise ModelError(f"[[{table}]] #{i}", table, it, f"a fem.{cls.__name__}")
+                it.check(f"[[{table}]] #{i}")
+            setattr(self, key, items)
         if not self.segments:
             raise ModelError("", "segment", [], "at least one [[segment]] table")
-        for i, s in enumerate(self.segments, 1):
-            w = f"[[segment]] #{i}"
-            if not s.length > 0:
-                raise ModelError(w, "length", s.length, "a length > 0 (m)")
-            if isinstance(s.elements, bool) or not isinstance(s.elements, (int, np.integer)) or s.elements < 1:
-                raise ModelError(w, "elements", s.elements, "an integer >= 1")
-            if s.rho_extra < 0:
-                raise ModelError(w, "rho_extra", s.rho_extra, "a number >= 0")
-            if s.psi < 0:
-                raise ModelError(w, "psi", s.psi, "a dissipation coefficient >= 0")
         L = self.length
         allowed = SUPPORT_TYPES[self.physics]
         for i, s in enumerate(self.supports, 1):
@@ -104,8 +149,6 @@ class ShaftModel:
                 raise ModelError(w, "x", s.x, f"a position on the shaft, 0 <= x <= {L:g}")
             if s.type not in allowed:
                 raise ModelError(w, "type", s.type, " | ".join(map(repr, allowed)) + f" for {self.physics}")
-            if s.k < 0 or s.kr < 0:
-                raise ModelError(w, "k" if s.k < 0 else "kr", min(s.k, s.kr), "a stiffness >= 0")
             if s.kr and self.physics != "bending":
                 raise ModelError(w, "kr", s.kr, "kr (rotational stiffness) only for physics = 'bending'")
             if s.type == "spring" and s.k == 0 and s.kr == 0:
@@ -114,9 +157,6 @@ class ShaftModel:
             w = f"[[point]] #{i}"
             if not -1e-12 * L <= p.x <= L * (1 + 1e-12):
                 raise ModelError(w, "x", p.x, f"a position on the shaft, 0 <= x <= {L:g}")
-            for key in ("mass", "inertia", "k", "kr"):
-                if getattr(p, key) < 0:
-                    raise ModelError(w, key, getattr(p, key), "a number >= 0")
             if self.physics == "torsion" and p.mass:
                 raise ModelError(w, "mass", p.mass, "inertia (kg m^2) for torsion; mass is for axial/bending")
             if self.physics == "axial" and p.inertia:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .. import checks
 from ..errors import ModelError
 from ..linear_system import LinearSystem
 from ..motion.piecewise import PiecewiseLaw
@@ -37,6 +38,12 @@ class MotionLaw:
     omega: float = 0.0
     phase: float = 0.0
 
+    def __post_init__(self):
+        where = "MotionLaw"
+        for key in ("offset", "velocity", "amplitude", "phase"):
+            setattr(self, key, checks.finite(where, key, getattr(self, key)))
+        self.omega = checks.non_negative(where, "omega", self.omega, "angular frequency of the harmonic part, rad/s")
+
 
 @dataclass
 class ProgrammeMotion(MotionLaw):
@@ -47,6 +54,7 @@ class ProgrammeMotion(MotionLaw):
     law: PiecewiseLaw | None = None
 
     def __post_init__(self):
+        super().__post_init__()
         if not isinstance(self.law, PiecewiseLaw):
             raise ModelError("programme motion", "law", type(self.law).__name__,
                              "a discrete.motion.PiecewiseLaw in time (knots in s)")
@@ -62,6 +70,13 @@ class ExternalForce:
     omega: float = 0.0
     phase: float = 0.0
 
+    def __post_init__(self):
+        where = "ExternalForce"
+        self.g = checks.vector(where, "g", self.g, note="the force's direction coefficients on the DOFs")
+        for key in ("value", "amplitude", "phase"):
+            setattr(self, key, checks.finite(where, key, getattr(self, key)))
+        self.omega = checks.non_negative(where, "omega", self.omega, "angular frequency of the harmonic part, rad/s")
+
 
 def _dense(A):
     return np.asarray(A.toarray() if hasattr(A, "toarray") else A, dtype=float)
@@ -72,8 +87,29 @@ class Problem:
 
     def __init__(self, system: LinearSystem, elements=(), drivers: dict | None = None, forces=(),
                  mass_rate=None, reactive=None, x0=None, v0=None):
+        if not isinstance(system, LinearSystem):
+            raise ModelError("Problem", "system", type(system).__name__, "a discrete.linear_system.LinearSystem")
         self.system = system
         n = system.n_dofs
+        if drivers is not None and not isinstance(drivers, dict):
+            raise ModelError("Problem", "drivers", type(drivers).__name__, "a dict {constrained DOF index: MotionLaw}")
+        for j in (drivers or {}):
+            checks.index("Problem", "drivers", j, n)
+            if j not in set(system.constrained.tolist()):
+                raise ModelError("Problem", "drivers", j, "the index of a constrained DOF (drivers move the "
+                                 f"constrained DOFs of the system: {system.constrained.tolist()})")
+        for i, F in enumerate(forces):
+            if not isinstance(F, ExternalForce):
+                raise ModelError("Problem", "forces", type(F).__name__, "a list of ExternalForce")
+            if F.g.shape != (n,):
+                raise ModelError(f"force #{i + 1}", "g", f"{F.g.size} coefficients", f"a vector of {n} DOF coefficients")
+        x0 = None if x0 is None else checks.vector("Problem", "x0", x0, n, "initial positions of all DOFs")
+        v0 = None if v0 is None else checks.vector("Problem", "v0", v0, n, "initial velocities of all DOFs")
+        for key, A in (("mass_rate", mass_rate), ("reactive", reactive)):
+            if A is not None:
+                checks.real_matrix("Problem", key, A, (n, n))
+                if not np.all(np.isfinite(_dense(A))):
+                    raise ModelError("Problem", key, "inf/NaN entries", f"a finite real matrix of shape {(n, n)}")
         self.f = system.free
         self.c = system.constrained
         f, c = self.f, self.c
@@ -85,9 +121,9 @@ class Problem:
         self.forces = list(forces)
         self.elements = list(elements)
         for el in self.elements:
-            el.g = np.asarray(el.g, dtype=float)
-            if el.g.shape != (n,):
-                raise ModelError(f"element {el.name!r}", "g", el.g.shape, f"a vector of {n} DOF coefficients")
+            if not hasattr(el, "g") or not hasattr(el, "name"):
+                raise ModelError("Problem", "elements", type(el).__name__, "a list of discrete.nonsmooth elements")
+            el.g = checks.vector(f"element {el.name!r}", "g", el.g, n, "the element's coordinate s = g . x")
         self.names = [str(system.dof_name[i]) if system.dof_name[i] else system.label(i) for i in range(n)]
         for j, d in drivers.items():
             if not isinstance(d, MotionLaw):

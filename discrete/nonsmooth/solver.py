@@ -15,12 +15,15 @@ step).  Roots are refined by safeguarded Newton on the exact expression to ~1e-1
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import SolverError
+from .. import checks
+from ..errors import ModelError, SolverError
 from ..linalg.blas import single_threaded_blas
 from .periodic import detect_period, detect_period_smooth
 from .piece import AffinePiece
@@ -41,6 +44,25 @@ class Options:
     output_step: float | None = None   # extra output samples inside exact pieces (plots, CSV)
     contact_tol: float = 1e-9      # persistent-contact force counted as negative only below -contact_tol F_ref
     progress: object = None        # called with the time reached (a progress bar of the caller's)
+
+    def __post_init__(self):
+        """The [simulation] keys' rules of the model file (method = "event"), checked once here."""
+        w = "[simulation]"
+        self.max_events = checks.integer(w, "max_events", self.max_events, 1, "event limit")
+        self.max_step = checks.optional(checks.positive, w, "max_step", self.max_step, "largest step, s")
+        self.steps_per_period = checks.integer(w, "steps_per_period", self.steps_per_period, 1,
+                                               "marching steps per period of the highest frequency")
+        self.rtol = checks.positive(w, "rtol", self.rtol, "relative tolerance of numerically integrated pieces")
+        self.rest_tol = checks.positive(w, "rest_tol", self.rest_tol, "impact accumulation threshold")
+        if not isinstance(self.energy, (bool, np.bool_)):
+            raise ModelError(w, "energy", self.energy, "true | false")
+        self.max_zero_length = checks.integer(w, "max_zero_length", self.max_zero_length, 1,
+                                              "consecutive events without time progress")
+        self.output_step = checks.optional(checks.positive, w, "output_step", self.output_step, "s")
+        self.contact_tol = checks.non_negative(w, "contact_tol", self.contact_tol,
+                                               "relative tolerance of persistent-contact forces")
+        if self.progress is not None and not callable(self.progress):
+            raise ModelError(w, "progress", self.progress, "None or a callable taking the time reached")
 
 
 class EventDrivenSolver:
@@ -290,14 +312,25 @@ class EventDrivenSolver:
             max_step = 2 * np.pi / (self.o.steps_per_period * p.omega_max)
         if self.o.max_step:
             max_step = min(max_step, self.o.max_step)
+        dt_out = float(self.o.output_step or 0.0)
         sol = solve_ivp(fun, (t, t_end), y0, method="DOP853", rtol=self.o.rtol, atol=atol,
-                        events=events, dense_output=False, max_step=max_step)
+                        events=events, dense_output=bool(dt_out), max_step=max_step)
         if sol.status == -1:
             raise SolverError(f"numeric piece failed at t = {sol.t[-1]!r}: {sol.message}")
         acc["steps"] += sol.t.size - 1
         acc["numeric"] = acc.get("numeric", 0) + 1
         acc["nfev"] = acc.get("nfev", 0) + sol.nfev
+        t_stop = sol.t[-1] if sol.status == 1 else None      # a terminal event ends the piece there
         for k in range(1, sol.t.size):
+            if dt_out:        # the output instants k dt_out inside the step (as the exact pieces record them)
+                b = sol.t[k] if t_stop is None else min(sol.t[k], t_stop)
+                j = math.floor(sol.t[k - 1] / dt_out) + 1
+                while j * dt_out < b:
+                    tj = j * dt_out
+                    yj = sol.sol(tj)
+                    settle(yj)
+                    rec(tj, np.concatenate([yj[:nqv], exo(tj)]), mode, acc["W"])
+                    j += 1
             yk = sol.y[:, k]
             settle(yk)
             zk = np.concatenate([yk[:nqv], exo(sol.t[k])])
@@ -564,6 +597,12 @@ class _Recorder:
 
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
     """Event-driven simulation of ``problem`` on [t0, t_end] (see module docstring)."""
+    if not isinstance(problem, Problem):
+        raise ModelError("simulate", "problem", type(problem).__name__, "a discrete.nonsmooth.Problem")
+    if options is not None and not isinstance(options, Options):
+        raise ModelError("simulate", "options", options, "None or a discrete.nonsmooth.Options")
+    t0 = checks.finite("simulate", "t0", t0, "start time, s")
+    t_end = checks.bounded("simulate", "t_end", t_end, (">", t0), note="end time, s")
     return EventDrivenSolver(problem, options).run(t_end, t0)
 
 

@@ -38,6 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .. import checks
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
 from ..nonsmooth.problem import ExternalForce, MotionLaw
@@ -54,6 +55,21 @@ class StepOptions:
     events: bool = True         # record stick/slip/impact events
     max_events: int = 100_000
     progress: object = None     # called with the time reached every 1000 steps (a progress bar of the caller's)
+
+    def __post_init__(self):
+        """The [simulation] keys' rules of the model file (method = "moreau")."""
+        w = "[simulation]"
+        self.dt = checks.positive(w, "dt", self.dt, "time step, s")
+        self.theta = checks.bounded(w, "theta", self.theta, (">=", 0.5), ("<=", 1.0),
+                                    "theta of the theta-method, 0.5: energy-conserving midpoint")
+        self.tol = checks.positive(w, "tol", self.tol, "tolerance of the contact/friction projections")
+        self.max_iter = checks.integer(w, "max_iter", self.max_iter, 1, "iteration limit of the projections")
+        self.sample_every = checks.integer(w, "sample_every", self.sample_every, 1, "store every n-th step")
+        if not isinstance(self.events, (bool, np.bool_)):
+            raise ModelError(w, "events", self.events, "true | false")
+        self.max_events = checks.integer(w, "max_events", self.max_events, 1, "event limit")
+        if self.progress is not None and not callable(self.progress):
+            raise ModelError(w, "progress", self.progress, "None or a callable taking the time reached")
 
 
 @dataclass
@@ -88,17 +104,40 @@ def simulate_timestepping(system: LinearSystem, elements=(), drivers: dict | Non
                           x0=None, v0=None, t_end: float = 1.0, options: StepOptions | None = None,
                           t0: float = 0.0) -> SteppingResult:
     """Integrate ``system`` with friction/impact ``elements`` by the Moreau-Jean scheme."""
-    if options is None:
-        raise ModelError("simulate_timestepping", "options", None, "StepOptions(dt=...) with a time step > 0")
+    if not isinstance(options, StepOptions):
+        raise ModelError("simulate_timestepping", "options", options, "StepOptions(dt=...) with a time step > 0")
+    if not isinstance(system, LinearSystem):
+        raise ModelError("simulate_timestepping", "system", type(system).__name__,
+                         "a discrete.linear_system.LinearSystem")
     o = options
     if not (o.dt > 0 and np.isfinite(o.dt)):
         raise ModelError("[simulation]", "dt", o.dt, "a time step > 0")
     if not 0.5 <= o.theta <= 1.0:
         raise ModelError("[simulation]", "theta", o.theta, "a number in [0.5, 1] (0.5: energy-conserving midpoint)")
-    if not t_end > t0:
-        raise ModelError("[simulation]", "t_end", t_end, f"a time > {t0}")
+    t0 = checks.finite("simulate_timestepping", "t0", t0, "start time, s")
+    t_end = checks.bounded("[simulation]", "t_end", t_end, (">", t0), note="end time, s")
     n = system.n_dofs
     f, c = system.free, system.constrained
+    if drivers is not None and not isinstance(drivers, dict):
+        raise ModelError("simulate_timestepping", "drivers", type(drivers).__name__,
+                         "a dict {constrained DOF index: MotionLaw}")
+    for j, law in (drivers or {}).items():
+        checks.index("simulate_timestepping", "drivers", j, n)
+        if j not in set(c.tolist()):
+            raise ModelError("simulate_timestepping", "drivers", j, "the index of a constrained DOF (drivers move "
+                             f"the constrained DOFs of the system: {c.tolist()})")
+        if not isinstance(law, MotionLaw):
+            raise ModelError("simulate_timestepping", "drivers", type(law).__name__, "a MotionLaw per driven DOF")
+    for i, F in enumerate(forces):
+        if not isinstance(F, ExternalForce) or F.g.shape != (n,):
+            raise ModelError(f"force #{i + 1}", "g", getattr(getattr(F, "g", None), "shape", F),
+                             f"an ExternalForce with a vector of {n} DOF coefficients")
+    elements = list(elements)
+    for el in elements:
+        el.g = checks.vector(f"element {getattr(el, 'name', '?')!r}", "g", el.g, n,
+                             "the element's coordinate s = g . x")
+    x0 = None if x0 is None else checks.vector("simulate_timestepping", "x0", x0, n, "initial positions of all DOFs")
+    v0 = None if v0 is None else checks.vector("simulate_timestepping", "v0", v0, n, "initial velocities of all DOFs")
     drivers = dict(drivers or {})
     for j in c:
         drivers.setdefault(int(j), MotionLaw())

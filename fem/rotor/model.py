@@ -17,6 +17,7 @@ from typing import Sequence
 
 import numpy as np
 
+from discrete import checks
 from discrete.errors import ModelError
 
 from ..sections import Material
@@ -31,12 +32,7 @@ INTERPOLATIONS = ("linear", "pchip")
 
 
 def _finite(value, key: str, where: str, *, minimum: float | None = None, strict: bool = False) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ModelError(where, key, value, "a number") from None
-    if not math.isfinite(v):
-        raise ModelError(where, key, value, "a finite number")
+    v = checks.number(where, key, value, "a finite number")      # a bool or a string is never a number
     if minimum is not None and (v < minimum or (strict and v == minimum)):
         raise ModelError(where, key, value, f"a number {'>' if strict else '>='} {minimum:g}")
     return v
@@ -334,6 +330,12 @@ class Rotor:
         self.pedestals, self.couplings, self.supports = list(self.pedestals), list(self.couplings), list(self.supports)
         if self.dofs not in DOF_SETS:
             raise ModelError("[rotor]", "dofs", self.dofs, " | ".join(map(repr, DOF_SETS)))
+        for key, cls, table in (("segments", ShaftSegment, "segment"), ("discs", Disc, "disc"),
+                                ("bearings", Bearing, "bearing"), ("pedestals", Pedestal, "pedestal"),
+                                ("couplings", Coupling, "coupling"), ("supports", Support, "support")):
+            for i, item in enumerate(getattr(self, key), 1):
+                if not isinstance(item, cls):
+                    raise ModelError(f"[[rotor.{table}]] #{i}", table, item, f"a fem.rotor.{cls.__name__}")
         if not self.segments:
             raise ModelError("[rotor]", "segment", [], "at least one shaft segment")
         for i, s in enumerate(self.segments, 1):

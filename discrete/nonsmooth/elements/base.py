@@ -26,10 +26,11 @@ states at once).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
+from ... import checks
 from ...errors import ModelError
 
 #: the power categories of the energy balance (keys of Problem.power_parts)
@@ -48,6 +49,21 @@ class Element:
     event_driven = True           # has modes and events (False: a smooth law only)
     smoothness = 2                # 0: discontinuous law (friction), 1: kinked (contact), 2: smooth
     unilateral = False            # a constraint whose force must stay >= 0 (persistent contact)
+    infinite_ok = ()              # float parameters that may be +-inf (a lone bound of a clearance)
+
+    def __post_init__(self):
+        """Every float parameter of an element is a real, finite number (NaN never; +-inf only for the
+        names in ``infinite_ok``); an element's own rules follow in its ``__post_init__`` after this."""
+        if not isinstance(self.name, str):
+            raise ModelError(f"[[{self.kind}]]", "name", self.name, "a string")
+        where = f"[[{self.kind}]] {self.name!r}"
+        for f in fields(self):
+            if f.type is float or str(f.type) in ("float", "float | None", "typing.Optional[float]"):
+                v = getattr(self, f.name)
+                if v is not None:
+                    setattr(self, f.name, checks.number(where, f.name, v, "a finite number" if f.name not in
+                                                        self.infinite_ok else "a number (or +-inf)",
+                                                        allow_inf=f.name in self.infinite_ok))
 
     # ------------------------------------------------------------ event-driven solver
     @property

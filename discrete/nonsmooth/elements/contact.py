@@ -28,10 +28,12 @@ class Contact(Element):
     upper: float = math.inf
 
     kind = "contact"
+    infinite_ok = ("lower", "upper")
     work = "contacts"
     smoothness = 1
 
     def __post_init__(self):
+        super().__post_init__()
         where = f"[[contact]] {self.name!r}"
         if not self.k > 0:
             raise ModelError(where, "k", self.k, "a number > 0")

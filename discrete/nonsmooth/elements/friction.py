@@ -42,6 +42,7 @@ class Friction(Element):
     soft_start_tags = ("stop",)
 
     def __post_init__(self):
+        super().__post_init__()
         where = f"[[friction]] {self.name!r}"
         if self.static is None:
             self.static = self.kinetic

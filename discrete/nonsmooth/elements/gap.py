@@ -28,6 +28,7 @@ class Gap(Element):
     smoothness = 1
 
     def __post_init__(self):
+        super().__post_init__()
         where = f"[[gap]] {self.name!r}"
         if not self.k > 0:
             raise ModelError(where, "k", self.k, "a number > 0")

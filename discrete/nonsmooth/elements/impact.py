@@ -39,8 +39,12 @@ class Impact(Element):
     smooth_law = False
 
     def __post_init__(self):
+        super().__post_init__()
         if not 0.0 <= self.restitution <= 1.0:
             raise ModelError(f"[[impact]] {self.name!r}", "restitution", self.restitution, "a number in [0, 1]")
+        if self.v_rest is not None and not self.v_rest > 0:
+            raise ModelError(f"[[impact]] {self.name!r}", "v_rest", self.v_rest, "a number > 0 (or None: rest_tol "
+                             "times the largest impact speed)")
 
     # ------------------------------------------------------------ event-driven solver
     def initial_mode(self, s, sd, scale_v):

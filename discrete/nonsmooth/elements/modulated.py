@@ -34,6 +34,7 @@ class ModulatedSpring(Element):
     smooth_law = False
 
     def __post_init__(self):
+        super().__post_init__()
         where = f"[[spring]] {self.name!r} modulation"
         if not (math.isfinite(self.k) and self.k > 0):
             raise ModelError(where, "k", self.k, "a stiffness > 0 (the spring that pulsates)")

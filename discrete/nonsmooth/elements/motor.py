@@ -35,6 +35,7 @@ class Motor(Element):
     smooth_law = False
 
     def __post_init__(self):
+        super().__post_init__()
         where = f"[[motor]] {self.name!r}"
         for key in ("omega0", "nu"):
             v = getattr(self, key)

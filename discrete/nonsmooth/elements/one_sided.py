@@ -27,8 +27,11 @@ class OneSided(Element):
     smoothness = 1
 
     def __post_init__(self):
+        super().__post_init__()
         if not self.k > 0:
             raise ModelError(f"[[one_sided]] {self.name!r}", "k", self.k, "a number > 0")
+        if isinstance(self.side, bool) or self.side not in (1, -1):
+            raise ModelError(f"[[one_sided]] {self.name!r}", "side", self.side, "+1 (tension) | -1 (compression)")
 
     # ------------------------------------------------------------ event-driven solver
     def initial_mode(self, s, sd, scale_v):
