@@ -26,7 +26,10 @@ runs.
 Execution: each point is an independent pure function of (model, values) -- results do not depend on
 the number of workers or the order of completion.  Every finished point is written at once to
 ``OUT/points/NNNNNN.json`` (atomic rename); ``--resume OUT`` skips the points already written with
-status "ok" (failed points are retried).  A failing point is recorded with its error and the sweep goes
+status "ok" (failed points are retried).  The store (:mod:`fem.app.sweep_store`) trusts a point file only
+if it is complete and was written for this model and this point's values (a fingerprint), claims each
+point atomically so that concurrent runs on one directory split the work, and checks the output
+locations before any point runs.  A failing point is recorded with its error and the sweep goes
 on; the exit code is 1 if any point failed, 2 for bad input or an unreachable scheduler, 0 otherwise.
 """
 from __future__ import annotations
@@ -37,11 +40,14 @@ import json
 import math
 import os
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
 
 from discrete.errors import ModelError
+
+from .sweep_store import SweepStore
 
 MAX_POINTS = 100_000
 """Largest number of sweep points (each an independent analysis)."""
@@ -219,43 +225,48 @@ def _clean(o):
     return o
 
 
-# ------------------------------------------------------------------ storage
-def _point_path(out: Path, i: int) -> Path:
-    return out / "points" / f"{i:06d}.json"
+# ------------------------------------------------------------------ storage (fem/app/sweep_store.py)
+_REASONS = {"stale": "written for another model or grid", "incomplete": "fields missing",
+            "unreadable": "not JSON"}
 
 
-def _write_point(out: Path, i: int, rec: dict) -> None:
-    path = _point_path(out, i)
-    tmp = path.with_suffix(".tmp")
-    with open(tmp, "w") as fh:
-        json.dump({"index": i, **rec}, fh, indent=1, sort_keys=True)
-    os.replace(tmp, path)
-
-
-def _done(out: Path, n: int) -> set:
-    done = set()
-    for i in range(n):
-        p = _point_path(out, i)
-        if p.exists():
-            try:
-                with open(p) as fh:
-                    if json.load(fh).get("status") == "ok":
-                        done.add(i)
-            except (OSError, json.JSONDecodeError):
-                pass
-    return done
-
-
-def collect(out: Path, n: int) -> list:
+def collect(store: SweepStore) -> list:
+    """Every point's trusted record, or {index, status: missing} where none is."""
     recs = []
-    for i in range(n):
-        p = _point_path(out, i)
-        if p.exists():
-            with open(p) as fh:
-                recs.append(json.load(fh))
-        else:
-            recs.append({"index": i, "status": "missing"})
+    for i in range(len(store.points)):
+        rec, why = store.read(i)
+        recs.append(rec if rec is not None else {"index": i, "status": "missing", "values": store.points[i],
+                                                 "error": f"no trusted point file ({why})"})
     return recs
+
+
+def _wait_for(store: SweepStore, deferred: list, base, pts, spec, bar, stream, poll: float = 0.5) -> None:
+    """Wait for the points another live run has claimed (it writes them); a point whose claim is released
+    without a file, or whose run died, is computed here."""
+    if not deferred:
+        return
+    print(f"sweep: {len(deferred)} points are being computed by another run on {store.out}; waiting for them",
+          file=stream)
+    left = list(deferred)
+    while left:
+        still = []
+        for i in left:
+            rec, _ = store.read(i)
+            if rec is not None:
+                if bar:
+                    bar.update(1)
+                continue
+            if store.claimed_by_others(i):
+                still.append(i)
+            elif store.claim(i):
+                store.write(i, evaluate_point(base, pts[i], spec["analysis"], spec["periods"]))
+                if bar:
+                    bar.update(1)
+            else:
+                still.append(i)
+        left = still
+        if left:
+            time.sleep(poll)
 
 
 # ------------------------------------------------------------------ driver
@@ -283,21 +294,28 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     outdir = Path(resume or out or (Path(model_path).stem + "-sweep"))
     if resume and not Path(resume).is_dir():
         raise ModelError("command line", "--resume", str(resume), "the directory of an earlier sweep")
-    (outdir / "points").mkdir(parents=True, exist_ok=True)
-    meta = {"model": str(model_path), "analysis": spec["analysis"], "n_points": n, "points": pts}
-    mp = outdir / "sweep.json"
-    if mp.exists():
-        with open(mp) as fh:
-            old = json.load(fh)
-        if old.get("points") != json.loads(json.dumps(pts)) or old.get("analysis") != spec["analysis"]:
-            raise ModelError("command line", "--out", str(outdir), "a new directory: this one holds a different "
-                             "sweep (points or analysis changed)")
-    else:
-        with open(mp, "w") as fh:
-            json.dump(meta, fh, indent=1)
-    done = _done(outdir, n)
+    if json_path:
+        from ..output.paths import check_output_path
+
+        jp = check_output_path(json_path, "--json")
+        try:                     # permissions can lie (root, read-only mounts): create a file to be sure
+            probe = jp.parent / f".{jp.name}.{os.getpid()}.probe"
+            jp.parent.mkdir(parents=True, exist_ok=True)
+            probe.write_text("")
+            probe.unlink()
+        except OSError as exc:
+            raise ModelError("command line", "--json", str(json_path),
+                             f"a writable location ({exc.strerror or exc})") from None
+    store = SweepStore(outdir, base, spec["analysis"], spec["periods"], pts, str(model_path))
+    note = store.open("--resume" if resume else "--out")
+    if note:
+        print(f"sweep: {note}", file=stream)
+    done, rejected = store.scan()
     todo = [i for i in range(n) if i not in done]
     print(f"sweep: {n} points, {len(done)} already done in {outdir}, {len(todo)} to run", file=stream)
+    if rejected:
+        print("sweep: point files not trusted, recomputed: " + "; ".join(
+            f"{len(v)} {why} ({_REASONS[why]})" for why, v in rejected.items()), file=stream)
     bar = None
     if progress:
         try:
@@ -308,10 +326,21 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
             bar = None
     failed = 0
     try:
+        deferred = []                              # points a live concurrent run has claimed
+
+        def claimed(indices):
+            for i in indices:
+                if store.claim(i):
+                    yield i
+                elif not store.finished_elsewhere(i):
+                    deferred.append(i)
+                elif bar:
+                    bar.update(1)
+
         if workers == 0 and scheduler is None:
-            for i in todo:
+            for i in claimed(todo):
                 rec = evaluate_point(base, pts[i], spec["analysis"], spec["periods"])
-                _write_point(outdir, i, rec)
+                store.write(i, rec)
                 failed += rec["status"] != "ok"
                 if bar:
                     bar.update(1)
@@ -338,7 +367,7 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
                     # bounded queue: at most 2 tasks per worker in flight, the next point submitted as one
                     # finishes -- dynamic load balancing (point costs differ by 10x near resonances)
                     nwk = max(1, len(client.scheduler_info().get("workers", {})) or 1)
-                    queue = iter(todo)
+                    queue = claimed(todo)
                     futs = {}
                     ac = as_completed()
 
@@ -359,7 +388,7 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
                             rec = fut.result()
                         except Exception as exc:   # worker lost etc.
                             rec = {"values": pts[i], "status": "error", "error": f"{type(exc).__name__}: {exc}"}
-                        _write_point(outdir, i, rec)
+                        store.write(i, rec)
                         failed += rec["status"] != "ok"
                         if bar:
                             bar.update(1)
@@ -369,20 +398,31 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
             finally:
                 if cluster is not None:
                     cluster.close()
+        _wait_for(store, deferred, base, pts, spec, bar, stream)
     finally:
+        store.release_all()
         if bar:
             bar.close()
-    recs = collect(outdir, n)
+    recs = collect(store)
     bad = [r for r in recs if r.get("status") != "ok"]
     for r in bad:
         print(f"point {r['index']} {r.get('values')}: {r.get('status')}: {r.get('error', '')}", file=stream)
     summary = {"model": str(model_path), "analysis": spec["analysis"], "out": str(outdir), "n_points": n,
-               "n_ok": n - len(bad), "n_failed": len(bad), "points": recs}
+               "n_ok": n - len(bad), "n_failed": len(bad), "computed_here": store.computed,
+               "fingerprint": store.fingerprint,
+               "recomputed": {why: v for why, v in rejected.items()}, "points": recs}
     if json_path:
-        from ..output import payload, write_json
-
         from types import SimpleNamespace
 
-        write_json(json_path, payload("sweep", SimpleNamespace(title=spec["title"], kind=spec["kind"]), summary))
-    print(f"sweep: {n - len(bad)} of {n} points ok" + (f", {len(bad)} failed" if bad else ""), file=stream)
+        from ..output import payload, write_json
+
+        try:
+            write_json(json_path, payload("sweep", SimpleNamespace(title=spec["title"], kind=spec["kind"]), summary))
+        except OSError as exc:
+            print(f"sweep: could not write --json {json_path} ({exc.strerror or exc}); the {n} points are kept in "
+                  f"{outdir}: `drivefem sweep {model_path} --resume {outdir} --json PATH` writes the summary "
+                  "without recomputing them", file=stream)
+            return 1
+    print(f"sweep: {n - len(bad)} of {n} points ok" + (f", {len(bad)} failed" if bad else "")
+          + f"; {store.computed} computed by this run", file=stream)
     return 1 if bad else 0
