@@ -445,9 +445,8 @@ PROBES = [
 
 
 # A massless shaft (rho = 0) whose inertia is one disc, meshed with P2 elements: M is singular (8 of 9 free
-# DOFs carry no inertia) and the one finite mode exists (omega^2 = G J / (L J0)), but modal_analysis with
-# modes = 1 ends in a raw ArpackError -9999 inside discrete/linear/modal.py (not owned here: reported to the
-# lead; it should condense the massless DOFs, use the dense path, or refuse with a ModelError).
+# DOFs carry no inertia) and the one finite mode exists (omega^2 = G J / (L J0)); modal_analysis condenses the
+# massless DOFs out exactly (it used to end in a raw ArpackError -9999).
 def singular_mass_one_mode():
     J0 = 2.0
     r = _modes(_shaft(segments=[_seg(material=Material(E=2.1e11, G=8.1e10, rho=0.0))],
@@ -455,9 +454,7 @@ def singular_mass_one_mode():
     assert r.omega_rad_s[0] == pytest.approx(math.sqrt(8.1e10 * SEC.J / J0), rel=1e-8)
 
 
-PROBES.append(pytest.param("modal: massless P2 shaft + disc, 1 mode", singular_mass_one_mode, OK,
-                           marks=pytest.mark.xfail(strict=True, reason="raw ArpackError in discrete/linear/modal.py "
-                                                   "(not owned by this suite; reported to the lead)")))
+PROBES.append(("modal: massless P2 shaft + disc, 1 mode", singular_mass_one_mode, OK))
 
 
 def _names_key(message: str, key: str) -> bool:

@@ -33,7 +33,7 @@ import scipy.sparse.linalg as spla
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
 
-from .modal import ModalResult, modal_analysis
+from .modal import ModalResult, as_linear_system, modal_analysis
 
 DAMPING_TYPES = ("none", "viscous", "rayleigh", "modal", "hysteretic")
 
@@ -51,8 +51,9 @@ class Damping:
         if self.type not in DAMPING_TYPES:
             raise ModelError(where, "type", self.type, " | ".join(map(repr, DAMPING_TYPES)))
         for key in ("alpha", "beta", "zeta", "psi"):
-            if getattr(self, key) < 0:
-                raise ModelError(where, key, getattr(self, key), "a number >= 0")
+            v = getattr(self, key)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not (0 <= v < np.inf):
+                raise ModelError(where, key, v, "a finite real number >= 0")
 
     @property
     def delta(self) -> float:
@@ -110,28 +111,35 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     ``force``: full-length complex load vector; ``base_motion``: {constrained DOF index: complex
     amplitude}.  ``method``: ``direct`` or ``modal`` (``n_modes`` lowest modes).
     """
-    damping = damping or Damping()
-    omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
-    if omegas.size == 0 or np.any(omegas < 0) or not np.all(np.isfinite(omegas)):
-        raise ModelError("[analysis]", "frequencies", omegas.tolist(), "a non-empty list of frequencies >= 0")
+    system = as_linear_system(system, "harmonic_response")
+    damping = Damping() if damping is None else damping
+    if not isinstance(damping, Damping):
+        raise ModelError("[damping]", "damping", type(damping).__name__, "a discrete.linear.Damping or None")
+    omegas = _frequencies(omegas)
     if method not in ("direct", "modal"):
         raise ModelError("[analysis]", "method", method, "'direct' | 'modal'")
     if damping.type == "modal" and method != "modal":
         raise ModelError("[damping]", "type", "modal", "modal damping needs [analysis] method = 'modal'")
     n = system.n_dofs
-    F = np.zeros(n, dtype=complex) if force is None else np.asarray(force, dtype=complex)
-    if F.shape != (n,):
-        raise ValueError(f"force has shape {F.shape}, expected ({n},)")
+    F = np.zeros(n, dtype=complex) if force is None else load_vector(force, n, "force", complex_ok=True)
     Ub = np.zeros(system.constrained.size, dtype=complex)
     pos = {int(d): k for k, d in enumerate(system.constrained)}
+    if base_motion is not None and not isinstance(base_motion, dict):
+        raise ModelError("[[base_motion]]", "base_motion", type(base_motion).__name__,
+                         "a dict {constrained DOF index: complex amplitude}")
     for dof, amp in (base_motion or {}).items():
+        dof = dof_index(dof, n, "[[base_motion]] dof")
+        if not isinstance(amp, (int, float, complex, np.number)) or isinstance(amp, bool) or not np.isfinite(amp):
+            raise ModelError("[[base_motion]]", f"amplitude of DOF {dof}", amp, "a finite (complex) number")
         if int(dof) not in pos:
             raise ModelError("[[base_motion]]", "dof", system.label(int(dof)),
                              "a constrained DOF (a support or a driver): base motion moves a support")
         Ub[pos[int(dof)]] = amp
     if not np.any(F[system.free]) and not np.any(Ub):
         raise ModelError("[analysis]", "load", None, "at least one [[load]] or [[base_motion]] with a non-zero amplitude")
-    outputs = list(range(n)) if outputs is None else [int(i) for i in outputs]
+    outputs = list(range(n)) if outputs is None else [dof_index(i, n, "outputs") for i in np.atleast_1d(outputs)]
+    if n_modes is not None and (isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer))):
+        raise ModelError("[analysis]", "modes", n_modes, f"an integer from 1 to {system.n_free}, or None")
     n_rigid = 0 if system.rigid_modes is None else system.rigid_modes.shape[1]
     if n_rigid and np.any(omegas == 0):
         raise ModelError("[analysis]", "frequencies", 0.0,
@@ -171,6 +179,52 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
             ref.append(ub_full[same[0]] if same else 0.0)
         res.relative = res.response - np.asarray(ref)[None, :]
     return res
+
+
+def _frequencies(omegas) -> np.ndarray:
+    """Angular frequencies as a float array: real, finite, >= 0, at least one."""
+    try:
+        arr = np.atleast_1d(np.asarray(omegas))
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.dtype.kind not in "iuf" or arr.ndim != 1:
+        raise ModelError("[analysis]", "frequencies", omegas, "a non-empty 1-D list of real angular frequencies "
+                         "(rad/s) >= 0")
+    arr = arr.astype(float)
+    if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0):
+        raise ModelError("[analysis]", "frequencies", arr.tolist(), "a non-empty list of finite frequencies >= 0")
+    return arr
+
+
+def dof_index(i, n: int, key: str) -> int:
+    """A DOF index in 0 .. n-1 (an integer, not a bool or float), else a ModelError naming it and the range."""
+    if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
+        raise ModelError("[analysis]", key, i, f"an integer DOF index from 0 to {n - 1}")
+    if not 0 <= int(i) < n:
+        raise ModelError("[analysis]", key, int(i), f"a DOF index from 0 to {n - 1} (the model has {n} DOFs)")
+    return int(i)
+
+
+def load_vector(force, n: int, key: str = "force", *, complex_ok: bool) -> np.ndarray:
+    """A full-length finite load vector (complex where ``complex_ok``); never a silently dropped
+    imaginary part, a NaN or a truncated/broadcast shape."""
+    try:
+        F = np.asarray(force)
+    except (TypeError, ValueError):
+        F = np.asarray(None, dtype=object)
+    if F.dtype.kind not in ("iufc" if complex_ok else "iuf"):
+        allowed = ("a real or complex" if complex_ok else "a real") + f" vector of {n} numbers"
+        if F.dtype.kind == "c":
+            allowed += (" (a static load has no phase: pass the real part explicitly, or use harmonic_response "
+                        "for a complex amplitude)")
+        raise ModelError("[analysis]", key, f"<{F.dtype} array>" if F.dtype.kind != "O" else type(force).__name__,
+                         allowed)
+    if F.shape != (n,):
+        raise ModelError("[analysis]", key, f"shape {F.shape}", f"a full-length vector of shape ({n},), one entry per DOF")
+    if not np.all(np.isfinite(F)):
+        bad = int(np.flatnonzero(~np.isfinite(F))[0])
+        raise ModelError("[analysis]", f"{key}[{bad}]", F[bad].item(), "finite numbers (no NaN or inf)")
+    return F.astype(complex if complex_ok else float)
 
 
 def _direct(system, omegas, F, Ub, C, H):
@@ -229,6 +283,9 @@ def _modal(system, omegas, F, Ub, C, H, modal: ModalResult, damping: Damping):
 def frf(system: LinearSystem, omegas, *, drive: int, response: int, damping: Damping | None = None,
         method: str = "direct", n_modes: int | None = None) -> np.ndarray:
     """Receptance H(omega) = Q_response / F_drive for a unit force at DOF ``drive``."""
+    system = as_linear_system(system, "frf")
+    drive = dof_index(drive, system.n_dofs, "drive")
+    response = dof_index(response, system.n_dofs, "response")
     F = np.zeros(system.n_dofs, dtype=complex)
     F[drive] = 1.0
     return harmonic_response(system, omegas, force=F, damping=damping, outputs=[response], method=method,

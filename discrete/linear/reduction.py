@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
 
-from .modal import EPS, _factor, modal_analysis
+from .modal import EPS, _factor, as_linear_system, modal_analysis
 
 
 @dataclass
@@ -202,7 +202,13 @@ def reduce(system: LinearSystem, coupling, n_modes: int, *, static_correction: b
            threshold: float = 0.95) -> ReducedModel:
     """Reduce ``system`` keeping ``coupling`` DOFs (full indices) for nonlinear elements; ``n_modes``
     elastic modes (a floating structure's rigid-body modes come on top)."""
-    coupling = np.unique(np.asarray(coupling, dtype=int))
+    system = as_linear_system(system, "reduce")
+    raw = np.atleast_1d(np.asarray(coupling))
+    if raw.ndim != 1 or (raw.size and raw.dtype.kind not in "iu"):
+        raise ModelError("[reduction]", "coupling", coupling, f"a list of integer DOF indices from 0 to {system.n_dofs - 1}")
+    coupling = np.unique(raw.astype(int))
+    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.integer, np.floating)):
+        raise ModelError("[reduction]", "threshold", threshold, "a share in (0, 1]")
     _check(system, coupling, n_modes, threshold)
     R = _rigid_free(system)
     if static_correction:

@@ -53,7 +53,7 @@ def _stops(res) -> np.ndarray:
     return np.array([abs(e.state["m"]["x"]) for e in res.events if e.kind in ("reversal", "stick")])
 
 
-@case("discrete_seed004_claims", group="discrete")
+@case("discrete_seed004_claims", group="discrete", slow=True)
 def seed004_claims():
     """The claims on the package's exact solution of (1) (event-driven; friction stops exact).  Tolerances:
     claim 1 and the mu = 0 case of claim 2 are identities (1e-8 of 2 F_T/c: the integration's energy error);

@@ -40,7 +40,7 @@ def package_orbit(friction: str, a: float, z: float, periods: int = 80) -> dict:
     return {"phi": r.x[0][sel], "phidot": r.v[0][sel], "tension": -r.element_forces[j][sel]}
 
 
-@case("steady_seed002_phase_portraits", group="steady")
+@case("steady_seed002_phase_portraits", group="steady", slow=True)
 def seed002_portraits():
     """Literal reading (independent DOP853, sign switches located as events, 80 periods from the static
     state): phi < 0 during part of the cycle at the b-points (zero tension, as the text says) and phi >= 0

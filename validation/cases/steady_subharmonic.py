@@ -40,7 +40,7 @@ def _model(F3: float, psi: float, phase: float = 0.0) -> dict:
     return d
 
 
-@case("steady_subharmonic_third", group="steady")
+@case("steady_subharmonic_third", group="steady", slow=True)
 def subharmonic_third_case():
     """(a) The book's estimates at omega = 1.2 against the digest's printed values (half a unit of the last
     digit): (8.33) A1 = 1.08321, (8.28) alpha = 0.012263, (8.32) psi*/F3 = 0.16500.
