@@ -14,6 +14,8 @@ from __future__ import annotations
 from functools import cached_property
 from pathlib import Path
 
+import math
+
 import numpy as np
 
 from discrete.errors import ModelError
@@ -334,6 +336,10 @@ class Study:
         sm = SteadyModel(spec, steady_settings(self.doc.steady))
         if sm.cfg.method == "hb":
             budget.check_hb(sm.system.n, sm.cfg.harmonics)
+        if sm.cfg.start == "time":        # the start integrates start_periods response periods (DOP853)
+            w0 = float(sm.cfg.range[0])
+            t_start = sm.cfg.start_periods * 2 * math.pi * sm.cfg.subharmonic / w0
+            budget.check_start_integration(t_start, max(sm.problem0.omega_max, w0), sm.cfg.start_periods)
         return sm
 
 

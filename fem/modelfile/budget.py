@@ -20,6 +20,7 @@ MAX_HB_UNKNOWNS = 20_000         # harmonic-balance unknowns (dense Jacobian)
 MAX_HB_SAMPLES = 200_000         # AFT time samples per period
 MAX_CONTINUATION_STEPS = 100_000
 MAX_TIME_STEPS = 5_000_000       # steps of a time integration (estimated)
+MAX_START_STEPS = 100_000        # steps of the DOP853 run that starts HB ([steady] start = "time"; Python rhs)
 MAX_OUTPUT_SAMPLES = 2_000_000   # recorded instants of a simulation
 
 
@@ -97,6 +98,15 @@ def check_time_integration(t_end: float, omega_max: float, steps_per_period: int
     check_count("[simulation]", "t_end", steps, MAX_TIME_STEPS,
                 f"steps ({steps_per_period} per period of the highest frequency {omega_max:.3g} rad/s of the "
                 "model: stiff elements or small inertias shorten it)", t_end)
+
+
+def check_start_integration(t_end: float, omega_max: float, periods: int) -> None:
+    """[steady] start = "time": the steps of the DOP853 run that gives harmonic balance its start
+    (about 16 per period of the model's highest frequency over start_periods response periods)."""
+    steps = t_end * omega_max * 16 / (2 * math.pi)
+    check_count("[steady]", "start_periods", steps, MAX_START_STEPS,
+                f"integration steps for the start (16 per period of the highest frequency {omega_max:.3g} rad/s "
+                "over start_periods x subharmonic forcing periods)", periods)
 
 
 def check_hb(n_dofs: int, harmonics: int) -> None:

@@ -44,7 +44,7 @@ class Steady(Table):
     """Reference frequency of z, rad/s."""
     harmonics: Count = 7
     """HB: number of harmonics."""
-    subharmonic: Count = 1
+    subharmonic: Annotated[int, Field(ge=1, le=20)] = 1
     """Orbits of period subharmonic * 2 pi / omega."""
     samples: Count | None = None
     """HB: AFT time samples per period (default max(64, 8 H + 4); at least 4 H + 2)."""
