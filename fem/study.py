@@ -234,25 +234,9 @@ class Study:
                                    force=spec.force if np.any(spec.force) else None, base_motion=spec.base_motion,
                                    damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
                                    method=spec.method, n_modes=spec.n_modes)
-        kw = dict(damping=build_linear.damping(self.doc.damping), outputs=spec.outputs, method=spec.method,
-                  n_modes=spec.n_modes)
-        if spec.force_w2 is None or not np.any(spec.force_w2):
-            return harmonic_response(system, spec.omegas, force=spec.force, base_motion=spec.base_motion, **kw)
-        # loads ~ omega^2 (unbalance): linear in the load, so their response is omega^2 x the response to the
-        # amplitudes, added to that of the constant loads and base motions
-        r2 = harmonic_response(system, spec.omegas, force=spec.force_w2, **kw)
-        w2 = np.asarray(spec.omegas, float)[:, None] ** 2
-        r2.response = r2.response * w2
-        if r2.relative is not None:
-            r2.relative = r2.relative * w2
-        if np.any(spec.force) or spec.base_motion:
-            r1 = harmonic_response(system, spec.omegas, force=spec.force, base_motion=spec.base_motion, **kw)
-            r1.response = r1.response + r2.response
-            if r1.relative is not None:
-                r1.relative = r1.relative + (r2.relative if r2.relative is not None else r2.response)
-            r1.warnings = list(dict.fromkeys(r1.warnings + r2.warnings))
-            return r1
-        return r2
+        return harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
+                                 base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
+                                 outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
 
     def _with_motors(self, system):
         """The lumped linear system with every [[motor]]'s complex stiffness to ground along its coordinate

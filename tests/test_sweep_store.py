@@ -14,31 +14,11 @@ import pytest
 pytest.importorskip("distributed")
 
 from fem.app.sweep import run_sweep  # noqa: E402
+from tests.test_sweep_dask import MODEL as STEADY_MODEL  # noqa: E402
 
-MODEL = """
-title = "sweep store test"
-[[body]]
-name = "m"
-inertia = 1.0
-[[spring]]
-between = ["ground", "m"]
-k = 1.0
-[[damper]]
-between = ["ground", "m"]
-c = 0.2
-[[friction]]
-name = "dry"
-body = "m"
-kinetic = 0.1
-[[force]]
-body = "m"
-amplitude = 1.0
-omega = 1.0
-[simulation]
-t_end = 20.0
-[sweep]
-analysis = "simulate"
-"""
+MODEL = STEADY_MODEL.replace('[sweep]\nanalysis = "steady"\nperiods = 200\n',
+                             '[simulation]\nt_end = 20.0\n[sweep]\nanalysis = "simulate"\n')
+"""The friction oscillator of tests/test_sweep_dask.py, swept by time simulation (cheap points)."""
 CLI = [sys.executable, "-m", "fem.app.cli"]
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -105,11 +105,13 @@ class HarmonicResult:
 def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None = None,
                       base_motion: dict[int, complex] | None = None, damping: Damping | None = None,
                       outputs: list[int] | None = None, method: str = "direct", n_modes: int | None = None,
-                      modal: ModalResult | None = None) -> HarmonicResult:
+                      modal: ModalResult | None = None, force_omega2: np.ndarray | None = None) -> HarmonicResult:
     """Steady-state complex amplitudes at DOFs ``outputs`` over the angular frequencies ``omegas``.
 
-    ``force``: full-length complex load vector; ``base_motion``: {constrained DOF index: complex
-    amplitude}.  ``method``: ``direct`` or ``modal`` (``n_modes`` lowest modes).
+    ``force``: full-length complex load vector; ``force_omega2``: loads proportional to omega^2 (an
+    unbalance m e: the load at omega is omega^2 force_omega2), added to ``force`` frequency by frequency;
+    ``base_motion``: {constrained DOF index: complex amplitude}.  ``method``: ``direct`` or ``modal``
+    (``n_modes`` lowest modes).
     """
     system = as_linear_system(system, "harmonic_response")
     damping = Damping() if damping is None else damping
@@ -122,6 +124,8 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
         raise ModelError("[damping]", "type", "modal", "modal damping needs [analysis] method = 'modal'")
     n = system.n_dofs
     F = np.zeros(n, dtype=complex) if force is None else load_vector(force, n, "force", complex_ok=True)
+    F2 = np.zeros(n, dtype=complex) if force_omega2 is None else load_vector(force_omega2, n, "force_omega2",
+                                                                              complex_ok=True)
     Ub = np.zeros(system.constrained.size, dtype=complex)
     pos = {int(d): k for k, d in enumerate(system.constrained)}
     if base_motion is not None and not isinstance(base_motion, dict):
@@ -135,7 +139,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
             raise ModelError("[[base_motion]]", "dof", system.label(int(dof)),
                              "a constrained DOF (a support or a driver): base motion moves a support")
         Ub[pos[int(dof)]] = amp
-    if not np.any(F[system.free]) and not np.any(Ub):
+    if not np.any(F[system.free]) and not np.any(F2[system.free]) and not np.any(Ub):
         raise ModelError("[analysis]", "load", None, "at least one [[load]] or [[base_motion]] with a non-zero amplitude")
     outputs = list(range(n)) if outputs is None else [dof_index(i, n, "outputs") for i in np.atleast_1d(outputs)]
     if n_modes is not None and (isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer))):
@@ -155,13 +159,13 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     elif damping.type == "none":
         C, H = C * 0, H * 0
     if method == "direct":
-        Q = _direct(system, omegas, F, Ub, C, H)
+        Q = _direct(system, omegas, F, F2, Ub, C, H)
         name = "direct sparse solve"
     else:
         if modal is None:
             k = n_modes or min(20, system.n_free)
             modal = modal_analysis(system, k)
-        Q = _modal(system, omegas, F, Ub, C, H, modal, damping)
+        Q = _modal(system, omegas, F, F2, Ub, C, H, modal, damping)
         name = f"modal superposition ({modal.omega_rad_s.size} modes" + (", quasi-static base motion exact)" if np.any(Ub) else ")")
     desc = damping.describe()
     if system.H.nnz and damping.type != "none":
@@ -227,13 +231,18 @@ def load_vector(force, n: int, key: str = "force", *, complex_ok: bool) -> np.nd
     return F.astype(complex if complex_ok else float)
 
 
-def _direct(system, omegas, F, Ub, C, H):
+def _load_at(F, F2, w):
+    """The load at omega: the constant part plus omega^2 times the unbalance part (F itself if there is none)."""
+    return F + w * w * F2 if np.any(F2) else F
+
+
+def _direct(system, omegas, F, F2, Ub, C, H):
     f, b = system.free, system.constrained
     Q = np.zeros((omegas.size, system.n_dofs), dtype=complex)
     K, M = system.K, system.M
     for j, w in enumerate(omegas):
         D = (K + 1j * H - w**2 * M + 1j * w * C).tocsr()
-        rhs = F[f] - (D[f][:, b] @ Ub if b.size else 0)
+        rhs = _load_at(F, F2, w)[f] - (D[f][:, b] @ Ub if b.size else 0)
         try:
             lu = spla.splu(sp.csc_matrix(D[f][:, f]))
         except RuntimeError as exc:
@@ -244,7 +253,7 @@ def _direct(system, omegas, F, Ub, C, H):
     return Q
 
 
-def _modal(system, omegas, F, Ub, C, H, modal: ModalResult, damping: Damping):
+def _modal(system, omegas, F, F2, Ub, C, H, modal: ModalResult, damping: Damping):
     """Superposition on the free DOFs.  With base motion, the free DOFs are split into the
     quasi-static part q_s = -K_ff^-1 K_fb U_b (exact) and a dynamic part expanded in modes."""
     f, b = system.free, system.constrained
@@ -264,7 +273,7 @@ def _modal(system, omegas, F, Ub, C, H, modal: ModalResult, damping: Damping):
         qs = spla.spsolve(sp.csc_matrix(Kff), -(Kfb @ Ub))
     Mfb, Cfb, Hfb = system.M[f][:, b], C[f][:, b], H[f][:, b]
     for j, w in enumerate(omegas):
-        rhs = F[f].copy()
+        rhs = _load_at(F, F2, w)[f].copy()
         if np.any(Ub):
             # remaining load on the dynamic part: inertia and damping of the quasi-static motion
             rhs = rhs - ((-w**2 * Mff + 1j * w * Cff + 1j * Hff) @ qs + (-w**2 * Mfb + 1j * w * Cfb + 1j * Hfb) @ Ub)

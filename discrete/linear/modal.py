@@ -66,7 +66,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ModelError, SolverError
-from ..linear_system import LinearSystem
+from ..linear_system import LinearSystem, check_finite
 
 from ..linalg.blas import single_threaded_blas
 from ..linalg.seeded import seeded_eigenpairs
@@ -312,14 +312,13 @@ def _declared_rigid_level(system: LinearSystem, K, M) -> float:
 
 
 def _check_finite_matrices(system: LinearSystem, K, M) -> None:
-    """NaN/inf or complex entries (matrices replaced after construction) are refused."""
+    """NaN/inf or complex entries (matrices replaced after construction) are refused; the finiteness rule is
+    the constructor's own (:func:`discrete.linear_system.check_finite`)."""
     for name, A in (("K", K), ("M", M)):
         if np.iscomplexobj(A.data):
             raise ModelError(system.title or "modal_analysis", name, "complex entries",
                              "real symmetric matrices (complex stiffness belongs in H, used by harmonic analysis)")
-        if A.nnz and not np.all(np.isfinite(A.data)):
-            raise ModelError(system.title or "modal_analysis", name, "inf/NaN entries",
-                             "finite entries (check the model values: a NaN density, modulus or spring)")
+    check_finite(system.title or "modal_analysis", K=K, M=M)
 
 
 def _check_mass(system: LinearSystem, M) -> None:

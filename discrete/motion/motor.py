@@ -186,14 +186,14 @@ def with_motor_along(system: LinearSystem, g, omega0: float, nu: float, T: float
     if g.shape != (n,) or not np.all(np.isfinite(g)) or not np.any(g):
         raise ModelError(WHERE, "g", f"shape {g.shape}", f"a finite, nonzero coordinate vector of {n} entries")
     b = 1.0 / (_pos(nu, "nu") * _pos(omega0, "omega0"))
-    gg = sp.csr_matrix(np.outer(g, g))
+    gs = sp.csr_matrix(g[:, None])                       # g as a sparse column: no dense n x n products
     if T == 0:
-        return LinearSystem(M=system.M, K=system.K, C=system.C + b * gg, H=system.H, G=system.G,
+        return LinearSystem(M=system.M, K=system.K, C=system.C + b * (gs @ gs.T), H=system.H, G=system.G,
                             dof_field=system.dof_field, dof_x=system.dof_x, dof_name=system.dof_name,
                             constrained=system.constrained, rigid_modes=None, title=system.title,
                             physics=system.physics)
     c = b / _pos(T, "T")
-    ge = sp.csr_matrix(np.append(g, -1.0)[:, None])
+    ge = sp.vstack([gs, sp.csr_matrix([[-1.0]])], format="csr")
 
     def grow(A):
         return sp.block_diag([A, sp.csr_matrix((1, 1))], format="csr")

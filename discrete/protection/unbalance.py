@@ -34,8 +34,9 @@ def unbalance_response(system: LinearSystem, omegas, dof: int, mass_eccentricity
     if isinstance(dof, bool) or not isinstance(dof, (int, np.integer)) or not 0 <= dof < system.n_dofs:
         raise ModelError("unbalance", "dof", dof, f"a DOF index in [0, {system.n_dofs - 1}]")
     spec = unbalance_spectrum(omegas, mass_eccentricity, phase)
-    F = np.zeros(system.n_dofs, dtype=complex)
-    F[dof] = 1.0
-    res = harmonic_response(system, omegas, force=F, damping=damping, outputs=outputs, method=method, n_modes=n_modes)
-    res.response = res.response * spec[:, None]
+    unit = np.zeros(system.n_dofs, dtype=complex)
+    unit[dof] = 1.0                  # response to omega^2 x a unit unbalance, scaled by m e e^{i phase}
+    res = harmonic_response(system, omegas, force_omega2=unit, damping=damping, outputs=outputs, method=method,
+                            n_modes=n_modes)
+    res.response = res.response * (mass_eccentricity * np.exp(1j * phase))
     return res, spec

@@ -47,7 +47,7 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from .sweep_store import SweepStore
+from .sweep_store import REASONS, SweepStore
 
 MAX_POINTS = 100_000
 """Largest number of sweep points (each an independent analysis)."""
@@ -226,10 +226,6 @@ def _clean(o):
 
 
 # ------------------------------------------------------------------ storage (fem/app/sweep_store.py)
-_REASONS = {"stale": "written for another model or grid", "incomplete": "fields missing",
-            "unreadable": "not JSON"}
-
-
 def collect(store: SweepStore) -> list:
     """Every point's trusted record, or {index, status: missing} where none is."""
     recs = []
@@ -295,17 +291,9 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     if resume and not Path(resume).is_dir():
         raise ModelError("command line", "--resume", str(resume), "the directory of an earlier sweep")
     if json_path:
-        from ..output.paths import check_output_path
+        from ..output.paths import check_output_path, try_writing
 
-        jp = check_output_path(json_path, "--json")
-        try:                     # permissions can lie (root, read-only mounts): create a file to be sure
-            probe = jp.parent / f".{jp.name}.{os.getpid()}.probe"
-            jp.parent.mkdir(parents=True, exist_ok=True)
-            probe.write_text("")
-            probe.unlink()
-        except OSError as exc:
-            raise ModelError("command line", "--json", str(json_path),
-                             f"a writable location ({exc.strerror or exc})") from None
+        try_writing(check_output_path(json_path, "--json").parent, "--json", json_path)
     store = SweepStore(outdir, base, spec["analysis"], spec["periods"], pts, str(model_path))
     note = store.open("--resume" if resume else "--out")
     if note:
@@ -315,7 +303,7 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     print(f"sweep: {n} points, {len(done)} already done in {outdir}, {len(todo)} to run", file=stream)
     if rejected:
         print("sweep: point files not trusted, recomputed: " + "; ".join(
-            f"{len(v)} {why} ({_REASONS[why]})" for why, v in rejected.items()), file=stream)
+            f"{len(v)} {why} ({REASONS[why]})" for why, v in rejected.items()), file=stream)
     bar = None
     if progress:
         try:
@@ -324,7 +312,6 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
             bar = tqdm(total=n, initial=len(done), desc="sweep", unit="pt", file=stream)
         except ImportError:  # pragma: no cover
             bar = None
-    failed = 0
     try:
         deferred = []                              # points a live concurrent run has claimed
 
@@ -341,7 +328,6 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
             for i in claimed(todo):
                 rec = evaluate_point(base, pts[i], spec["analysis"], spec["periods"])
                 store.write(i, rec)
-                failed += rec["status"] != "ok"
                 if bar:
                     bar.update(1)
         elif todo:
@@ -389,7 +375,6 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
                         except Exception as exc:   # worker lost etc.
                             rec = {"values": pts[i], "status": "error", "error": f"{type(exc).__name__}: {exc}"}
                         store.write(i, rec)
-                        failed += rec["status"] != "ok"
                         if bar:
                             bar.update(1)
                         submit_next()
@@ -410,7 +395,7 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     summary = {"model": str(model_path), "analysis": spec["analysis"], "out": str(outdir), "n_points": n,
                "n_ok": n - len(bad), "n_failed": len(bad), "computed_here": store.computed,
                "fingerprint": store.fingerprint,
-               "recomputed": {why: v for why, v in rejected.items()}, "points": recs}
+               "recomputed": rejected, "points": recs}
     if json_path:
         from types import SimpleNamespace
 

@@ -30,7 +30,11 @@ from pathlib import Path
 
 from discrete.errors import ModelError
 
+from ..output.paths import try_writing
+
 HOST = socket.gethostname()
+REASONS = {"stale": "written for another model or grid", "incomplete": "fields missing", "unreadable": "not JSON"}
+"""Why a point file present in the store is not trusted (:meth:`SweepStore.read`)."""
 
 
 def _canonical(obj) -> str:
@@ -55,21 +59,13 @@ class SweepStore:
                      "fingerprint": self.fingerprint}
         self.pid = os.getpid()
         self.mine: set[int] = set()
-        self.rejected: dict[str, list[int]] = {}
         self.computed = 0                    # points this run computed and stored
         self.started = time.time()
 
     # ------------------------------------------------------------ set-up
     def open(self, option: str) -> str | None:
         """Create or check the directory and its manifest before any work; returns a note to print."""
-        try:
-            self.dir.mkdir(parents=True, exist_ok=True)
-            probe = self.dir / f".probe.{self.pid}"
-            probe.write_text("")
-            probe.unlink()
-        except OSError as exc:
-            raise ModelError("command line", option, str(self.out), f"a writable directory ({exc.strerror or exc})") \
-                from None
+        try_writing(self.dir, option, self.out, "a writable directory")
         mp = self.out / "sweep.json"
         note = None
         if mp.exists():
@@ -128,7 +124,6 @@ class SweepStore:
                 done.add(i)
             elif why not in (None, "missing"):
                 rejected.setdefault(why, []).append(i)
-        self.rejected = rejected
         return done, rejected
 
     def write(self, i: int, rec: dict) -> None:

@@ -28,3 +28,16 @@ def check_output_path(path, option: str, directory: bool = False) -> Path:
     if not os.access(probe, os.W_OK | os.X_OK):
         raise ModelError("command line", option, str(p), f"a writable location ({probe} is not writable)")
     return p
+
+
+def try_writing(directory, option: str, shown, what: str = "a writable location") -> None:
+    """Create ``directory`` (and parents) and a file in it, then remove the file: permissions can lie (root,
+    read-only mounts, full disks), a write cannot.  ModelError naming ``option`` and ``shown`` on failure."""
+    d = Path(directory)
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        probe = d / f".drivefem-probe.{os.getpid()}"
+        probe.write_text("")
+        probe.unlink()
+    except OSError as exc:
+        raise ModelError("command line", option, str(shown), f"{what} ({exc.strerror or exc})") from None

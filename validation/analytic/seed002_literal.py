@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from .steady_seed002 import C_STRAND, COMBINED, F0, J, K_NAT, M0, R, SIMPLE
 
@@ -57,26 +58,22 @@ def literal_orbit(friction: str, a: float, z: float, periods: int = 80, keep: in
         j = int(np.argmax(g > 0))
         if g[j] <= 0:
             raise RuntimeError(f"literal_orbit: the spool stays stuck from t = {t0:.6g}")
-        from scipy.optimize import brentq
         lo = grid[j - 1] if j else t0
         t1 = brentq(lambda t: abs(drive(t, y[0], taut)) - kin, lo, grid[j], xtol=1e-15, rtol=1e-15)
         t1 = min(t1 * (1 + 1e-14) + 1e-15, grid[j])
         return t1, np.sign(drive(t1, y[0], taut))
 
     t0, sv = leave_stick(t0, y)
+    def on_vel(t, yy):
+        return yy[1]
+
+    gate.terminal = on_vel.terminal = True
     for _ in range(200 * periods):
-        def on_phi(t, yy):
-            return gate(t, yy)
-
-        def on_vel(t, yy):
-            return yy[1]
-
-        on_phi.terminal = on_vel.terminal = True
-        on_phi.direction = -1.0 if taut else 1.0       # the next crossing leaves the current side
+        gate.direction = -1.0 if taut else 1.0         # the next crossing leaves the current side
         on_vel.direction = -sv
         sel = t_keep[t_keep > t0]
         s = solve_ivp(lambda t, yy: rhs(t, yy, taut, sv), (t0, t_end), y, method="DOP853", rtol=1e-10, atol=1e-13,
-                      events=(on_phi, on_vel), t_eval=sel if sel.size else None, max_step=T / 50, first_step=min(T / 1e4, t_end - t0))
+                      events=(gate, on_vel), t_eval=sel if sel.size else None, max_step=T / 50, first_step=min(T / 1e4, t_end - t0))
         if sel.size and len(s.t):
             ts.append(np.asarray(s.t))
             ys.append(s.y.reshape(2, -1))
