@@ -283,6 +283,8 @@ class Study:
     def simulate(self, progress=None):
         """Time simulation by the method of [simulation] (lumped and hybrid files); ``progress(t)`` is
         called as the integration advances."""
+        if self.kind == "rotor":
+            return self.run_up(progress)
         settings = self.simulation_settings()
         if progress is not None:
             settings["progress"] = progress
@@ -308,6 +310,19 @@ class Study:
         if problem is not None:
             budget.check_time_integration(t_end, problem.omega_max, spp, method)
         return simulate_spec(spec, t_end, method, settings, problem=problem)
+
+    def run_up(self, progress=None):
+        """The run-up of a rotor file ([run_up], [[unbalance]], [[rub]]): :class:`fem.rotor.RunUpResult`;
+        ``progress(fraction)`` as it advances."""
+        from .rotor import run_up
+
+        self._need("rotor", what="a run-up")
+        spec = build_rotor.run_up_spec(self.doc)
+
+        def check_steps(estimate, note):
+            budget.check_count("[run_up]", "duration", estimate, budget.MAX_TIME_STEPS, note, spec.run.duration)
+
+        return run_up(self.rotor, spec.run, spec.unbalances, spec.rubs, progress=progress, check_steps=check_steps)
 
     def steady_model(self):
         """The steady-state model of [steady] (lumped and hybrid files)."""

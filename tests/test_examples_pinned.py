@@ -50,6 +50,7 @@ PINNED = {
     "sweep_seed002.toml": ["steady_seed002_afc", "steady_seed002_time_sweeps"],
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
     "two_mass_chain.toml": ["lumped-two-mass-chain"],
+    "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
 }
 """Example file -> the validation cases that load it as their model."""
 

@@ -6,7 +6,10 @@
 * ``drivefem forced ROTOR [--json F] [--csv F] [--plot F] [--all]``: unbalance response of
   ``[unbalance_response]`` and ``[[unbalance]]`` (Bode plot, peaks with AF and separation margins);
 * ``drivefem campbell ROTOR [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
-  ``[campbell]`` with the critical speeds.
+  ``[campbell]`` with the critical speeds;
+* ``drivefem simulate ROTOR [--json F] [--csv F] [--png DIR]``: the run-up of ``[run_up]`` with the
+  ``[[rub]]`` clearances and ``[[unbalance]]`` (orbits, rub forces and regimes, events, energy
+  balance); exit 1 when the run stopped early (the reason is printed).
 
 ``modal`` and ``forced`` keep their meaning for the other kinds: :func:`add_parser` routes a file
 with a ``[rotor]`` table here and every other file to :mod:`fem.app.commands`.  Exit codes as for
@@ -27,7 +30,7 @@ RPM = 30.0 / np.pi
 
 
 def add_parser(subparsers) -> None:
-    """Register ``drivefem campbell`` and route ``modal``/``forced`` of rotor files here."""
+    """Register ``drivefem campbell`` and route ``modal``/``forced``/``simulate`` of rotor files here."""
     p = subparsers.add_parser("campbell", help="Campbell diagram and critical speeds of a [rotor] model file")
     p.add_argument("model")
     p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
@@ -36,7 +39,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--png", help="write the PNG diagram here (excitation lines, critical speeds, log decrement)")
     p.add_argument("--csv", help="write the diagram here, one row per speed")
     p.set_defaults(func=campbell)
-    for name, rotor_command in (("modal", modal), ("forced", forced)):
+    for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), rotor_command))
 
@@ -79,6 +82,13 @@ def _load(path):
     return Study.load(path)
 
 
+def _linear_note(study) -> None:
+    """Linear analyses see the rotor free of contact: say so when the file has [[rub]] clearances."""
+    if getattr(study.doc, "rub", None):
+        print(f"note: the {len(study.doc.rub)} [[rub]] clearance(s) act only in drivefem simulate; this linear "
+              "analysis sees the rotor free of contact", file=sys.stderr)
+
+
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _check_outputs(args, json=False, plot=False, png=True)
@@ -86,6 +96,7 @@ def modal(args) -> int:
         raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
                          "for a rotor model file")
     study = _load(args.model)
+    _linear_note(study)
     res = study.modal(args.modes)
     _emit(args, "modal", study, contract.modal_data(study, res))
     modal_table(study, res)
@@ -144,6 +155,7 @@ def modal_table(study, res, out=None) -> None:
 def forced(args) -> int:
     _check_outputs(args, json=False, csv=False, plot=False)
     study = _load(args.model)
+    _linear_note(study)
     res = study.forced()
     _emit(args, "forced", study, contract.forced_data(study, res))
     forced_table(study, res, all_rows=args.all)
@@ -204,6 +216,7 @@ def campbell(args) -> int:
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
                          "model)")
+    _linear_note(study)
     camp = study.campbell(args.modes)
     _emit(args, "campbell", study, contract.campbell_data(study, camp))
     campbell_table(study, camp)
@@ -250,3 +263,69 @@ def campbell_columns(camp) -> tuple[list[str], list]:
             row += [camp.omega_damped_rad_s[i, j], ld if np.isfinite(ld) else "", camp.whirl[i][j]]
         rows.append(row)
     return head, rows
+
+
+# ------------------------------------------------------------- simulate (run-up with rubs)
+def simulate(args) -> int:
+    _check_outputs(args, json=False, csv=False, png=True)
+    from .progress import progress_bar
+
+    study = _load(args.model)
+    with progress_bar(0.0, 1.0, "run-up", "") as update:
+        res = study.run_up(progress=update)
+    doc = _emit(args, "simulate", study, contract.run_up_data(study, res))
+    run_up_table(study, res)
+    if args.csv:
+        head = ["t", "speed_rad_s"] + [f"{c}@x={x:g}" for x in res.probe_x for c in ("y", "z")] + \
+            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")]
+        cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
+            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))]
+        write_csv(args.csv, head, np.column_stack(cols).tolist())
+        print(f"wrote {args.csv}")
+    if args.png:
+        from pathlib import Path
+
+        from ..rotor.plots import plot_run_up, plot_run_up_orbits
+
+        out = Path(args.png)
+        out.mkdir(parents=True, exist_ok=True)
+        print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
+        k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
+        print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+    return 1 if doc.get("stopped") else 0
+
+
+def _lowest(values) -> str:
+    known = [v for v in values if v is not None]
+    return f"{min(known):.12f}" if known else ("n/a (free rotor)" if values else "n/a (no rub)")
+
+
+def run_up_table(study, res, out=None) -> None:
+    out = sys.stdout if out is None else out
+    red = res.reduction
+    print(f"{study.title}\nrun-up {res.speed[0]:.6g} -> {res.speed[-1]:.6g} rad/s "
+          f"({res.speed[0] * RPM:.6g} -> {res.speed[-1] * RPM:.6g} rev/min) in {res.t[-1]:.6g} s, method {res.method}, "
+          f"{res.steps} steps ({'right-hand sides' if res.method == 'event' else 'time steps'}), {res.wall_time:.3g} s", file=out)
+    fc = red["frequency_check"]
+    print(f"reduced rotor: {red['basis']} shapes ({red['modes']} modes + {red['attachment_shapes']} attachment), "
+          f"highest {red['highest_frequency_rad_s']:.4g} rad/s; static restitution at the rubs "
+          f"{_lowest(red['restitution'])}; complex eigenvalues vs full rotor at {fc['speed_rad_s']:.4g} rad/s: "
+          f"max rel. error {fc['max_relative_error']:.2e}", file=out)
+    for k, x in enumerate(res.probe_x):
+        r = np.hypot(res.orbit_y[:, k], res.orbit_z[:, k])
+        j = int(np.argmax(r))
+        print(f"  probe x = {x:g} m: peak orbit radius {r[j]:.4e} m at {res.speed[j] * RPM:.1f} rev/min", file=out)
+    for r in res.rubs:
+        fc = r.first_contact
+        first = "never" if fc is None else f"first at t = {fc['t']:.5g} s ({fc['speed_rad_s'] * RPM:.1f} rev/min)"
+        full = ", ".join(f"{np.interp(a, res.t, res.speed) * RPM:.0f}-{np.interp(b, res.t, res.speed) * RPM:.0f}"
+                         for a, b in r.full_annular) or "none"
+        print(f"  rub {r.name!r} (clearance {r.clearance:g} m): contact {first}; {r.contact_phases} contact phases; "
+              f"max normal force {r.normal_force.max(initial=0.0):.4g} N; full annular rub at rev/min {full}; "
+              f"contact share {100 * r.in_contact.mean():.1f} %"
+              + (f"; max penetration {r.max_penetration:.3g} m" if res.method == "moreau" else ""), file=out)
+    w = res.works
+    print("energy: start {:.6g} J, end {:.6g} J; works ".format(res.energy_start, res.energy_end)
+          + ", ".join(f"{k} {v:.6g}" for k, v in w.items()) + f" J; balance error {res.energy_error:.2e}", file=out)
+    for wmsg in res.warnings:
+        print(f"warning: {wmsg}", file=out)

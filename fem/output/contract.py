@@ -130,6 +130,11 @@ def simulate_data(study, res) -> dict:
     return d
 
 
+def run_up_data(study, res) -> dict:
+    """A rotor's run-up (:class:`fem.rotor.RunUpResult`): summary, events, energy balance, the samples."""
+    return res.to_dict(samples=True)
+
+
 # ------------------------------------------------------------------ parametric
 def parametric_data(study, spec, chart) -> dict:
     """The stability chart of ``drivefem parametric`` (a :class:`StabilityChart` and its file spec)."""

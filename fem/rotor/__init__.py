@@ -10,7 +10,10 @@ analysis do it), and run the analyses:
   from a linear eigenproblem, and their map against bearing stiffness;
 * :func:`unbalance_response` -- Bode/polar data, orbits, peaks with AF and separation margins;
 * :func:`static_deflection` -- deflection under gravity and point loads, bearing loads;
-* :func:`stability_threshold` -- the onset speed of instability (cross-coupled stiffness).
+* :func:`stability_threshold` -- the onset speed of instability (cross-coupled stiffness);
+* :func:`run_up` -- a run-up through the speed range with rotor-stator rubs and bearing
+  clearances (:class:`Rub`), compliant contacts located event by event or rigid ones by
+  Moreau-Jean, on a reduced rotor that reports its restitution, with the energy balance.
 
 Figures are in :mod:`fem.rotor.plots`, 3D whirl pictures in :mod:`fem.rotor.render`.
 ``RotorSystem.system_at(speed)`` gives the :class:`~discrete.linear_system.LinearSystem`
@@ -22,6 +25,7 @@ from .campbell import CampbellResult, CriticalSpeed, campbell, critical_speeds
 from .critical_map import CriticalSpeedMap, UndampedCriticalSpeeds, critical_speed_map, undamped_critical_speeds
 from .modal import RotorModes, rotor_modes
 from .model import Bearing, Coupling, Disc, Pedestal, Rotor, ShaftSegment, Support, Unbalance, rpm, to_rpm
+from .runup import Rub, RunUp, RunUpResult, run_up
 from .response import Probe, UnbalanceResponse, required_margin, unbalance_response
 from .stability import StabilityResult, stability_threshold
 from .static import PointLoad, StaticResult, static_deflection
@@ -31,4 +35,5 @@ __all__ = ["Rotor", "ShaftSegment", "Disc", "Bearing", "Pedestal", "Coupling", "
            "RotorSystem", "assemble_rotor", "RotorModes", "rotor_modes", "CampbellResult", "CriticalSpeed", "campbell",
            "critical_speeds", "UndampedCriticalSpeeds", "undamped_critical_speeds", "CriticalSpeedMap",
            "critical_speed_map", "Probe", "UnbalanceResponse", "unbalance_response", "required_margin",
-           "PointLoad", "StaticResult", "static_deflection", "StabilityResult", "stability_threshold", "Orbits", "mac"]
+           "PointLoad", "StaticResult", "static_deflection", "StabilityResult", "stability_threshold", "Orbits", "mac",
+           "Rub", "RunUp", "RunUpResult", "run_up"]

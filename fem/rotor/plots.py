@@ -2,6 +2,7 @@
 excitation lines and critical speeds, Bode and polar plots, orbits, the critical speed map."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import matplotlib
@@ -221,4 +222,56 @@ def plot_static(static, path, *, title: str = "") -> Path:
     ax.set_title(title or "static deflection", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_run_up(res, path, *, title: str = "") -> Path:
+    """A run-up with rubs: the orbit radius at each probe against speed (rev/min), the rubs' normal
+    forces below with the full annular rub intervals shaded; the clearances as dashed lines."""
+    s = res.speed * RPM
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, gridspec_kw={"height_ratios": [2, 1.2]})
+    for k, x in enumerate(res.probe_x):
+        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8, label=f"x = {x:g} m")
+    for r in res.rubs:
+        ax.axhline(1e3 * r.clearance, color="k", ls="--", lw=0.8)
+        ax2.plot(s, r.normal_force, lw=0.8, label=r.name)
+        for t0, t1 in r.full_annular:
+            ax2.axvspan(*(np.interp([t0, t1], res.t, s)), color="tab:red", alpha=0.15)
+    ax.set_ylabel("orbit radius [mm]")
+    ax.legend(fontsize=8)
+    ax.set_title(title or f"run-up ({res.method})")
+    ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8, va="top")
+    ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
+    ax2.set_xlabel("speed [rev/min]")
+    if res.rubs:
+        ax2.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: str = "") -> Path:
+    """The orbit at one probe over ``windows`` stretches of the run (a few revolutions each, ending
+    at equally spaced instants), with the clearance circle of a rub at that position."""
+    fig, axes = plt.subplots(1, windows, figsize=(3.2 * windows, 3.4))
+    axes = np.atleast_1d(axes)
+    n = res.t.size
+    ends = np.linspace(n // windows, n - 1, windows).astype(int)
+    x = res.probe_x[probe]
+    rub = next((r for r in res.rubs if abs(r.x - x) < 1e-12), None)
+    lim = 1e3 * max(np.hypot(res.orbit_y[:, probe], res.orbit_z[:, probe]).max(initial=0.0),
+                    rub.clearance + math.hypot(*rub.centre) if rub else 0.0) * 1.1 or 1.0
+    for ax, k in zip(axes, ends):
+        revs = 3 * 2 * np.pi / max(res.speed[k], 1e-12)
+        sel = (res.t > res.t[k] - revs) & (res.t <= res.t[k])
+        ax.plot(1e3 * res.orbit_y[sel, probe], 1e3 * res.orbit_z[sel, probe], lw=0.8)
+        if rub is not None:
+            a = np.linspace(0, 2 * np.pi, 200)
+            ax.plot(1e3 * (rub.centre[0] + rub.clearance * np.cos(a)), 1e3 * (rub.centre[1] + rub.clearance * np.sin(a)),
+                    "k--", lw=0.8)
+        ax.set_aspect("equal")
+        ax.set_xlim(-lim, lim)
+        ax.set_ylim(-lim, lim)
+        ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
+        ax.set_xlabel("y [mm]")
+    axes[0].set_ylabel("z [mm]")
+    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)", fontsize=10)
     return _save(fig, path)

@@ -115,3 +115,41 @@ def spinning_timoshenko_ss(E, G, kappa, rho, A, I, Ip, L, n: int, speed: float) 
     roots = np.roots(poly)
     roots = roots[np.abs(roots.imag) <= 1e-9 * np.abs(roots)].real
     return float(np.min(roots[roots > 0])), float(np.min(-roots[roots < 0]))
+
+
+# ---------------------------------------------------------------- Jeffcott rotor in a clearance ring
+def annular_rub_radius(m: float, k: float, c: float, k_c: float, delta: float, mu: float, e: float,
+                       speed: float, r_max: float) -> list[float]:
+    """Radii R of the synchronous forward circular whirl of a Jeffcott rotor (mass m, shaft
+    stiffness k, damping c, unbalance eccentricity e) in a compliant clearance ring (radial
+    clearance delta, contact stiffness k_c, Coulomb friction mu at the contact): with z = R
+    e^{i(Omega t - phi)} the contact force is -k_c (1 - delta/R)(1 + i mu) z (normal plus friction
+    opposing the forward slip), so  |k - m Omega^2 + i c Omega + k_c (1 - delta/R)_+ (1 + i mu)| R
+    = m e Omega^2.  All roots in (0, r_max] (a scan of 20 000 cells, each root refined by Brent)."""
+    from scipy.optimize import brentq
+
+    F = m * e * speed ** 2
+
+    def g(R):
+        a = k_c * (1 - delta / R) if R > delta else 0.0
+        return abs(k - m * speed ** 2 + 1j * c * speed + a * (1 + 1j * mu)) * R - F
+
+    grid = np.linspace(r_max * 1e-6, r_max, 20_001)
+    val = np.array([g(R) for R in grid])
+    return [brentq(g, grid[i], grid[i + 1], xtol=1e-300, rtol=4 * np.finfo(float).eps)
+            for i in range(grid.size - 1) if val[i] * val[i + 1] < 0]
+
+
+def annular_rub_force_rigid(m: float, k: float, c: float, delta: float, mu: float, e: float, speed: float) -> float:
+    """Normal force N of the full annular rub of a Jeffcott rotor on a rigid ring (orbit radius =
+    delta): (k - m Omega^2 + i c Omega) delta + N (1 + i mu) = m e Omega^2 e^{i phi}, so N is the
+    non-negative root of (1 + mu^2) N^2 + 2 (a + mu b) N + a^2 + b^2 - F^2 = 0 with a = (k - m
+    Omega^2) delta, b = c Omega delta, F = m e Omega^2 (nan when there is none)."""
+    a, b, F = (k - m * speed ** 2) * delta, c * speed * delta, m * e * speed ** 2
+    A, B, C = 1 + mu * mu, 2 * (a + mu * b), a * a + b * b - F * F
+    disc = B * B - 4 * A * C
+    if disc < 0:
+        return float("nan")
+    roots = [(-B + s * np.sqrt(disc)) / (2 * A) for s in (1.0, -1.0)]
+    pos = [r for r in roots if r >= 0]
+    return float(max(pos)) if pos else float("nan")

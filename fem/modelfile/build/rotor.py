@@ -152,3 +152,44 @@ def response_spec(doc) -> ResponseSpec:
     unb = [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
     return ResponseSpec(unbalances=unb, speeds=speeds, probes=probes,
                         operating_range=None if op is None else (float(op[0]), float(op[1])), find_peaks=t.peaks)
+
+
+@dataclass
+class RunUpSpec:
+    """What ``drivefem simulate`` of a rotor file needs: the ramp, the unbalances, the rubs."""
+
+    run: object
+    unbalances: list
+    rubs: list
+
+
+def run_up_spec(doc) -> RunUpSpec:
+    """``[run_up]``, ``[[unbalance]]`` and ``[[rub]]`` -> :class:`fem.rotor.RunUp`, unbalances, rubs."""
+    from ...rotor.runup import Rub, RunUp
+
+    t = doc.run_up
+    if t is None:
+        raise ModelError("model file (rotor)", "run_up", None, "a table [run_up] with speed_start, speed_end (or "
+                         "speed_start_rpm, speed_end_rpm) and duration (required for drivefem simulate)")
+    start = t.speed_start if t.speed_start_rpm is None else t.speed_start_rpm * RPM
+    end = t.speed_end if t.speed_end_rpm is None else t.speed_end_rpm * RPM
+    run = RunUp(speed_start=float(start), speed_end=float(end), duration=t.duration, method=t.method, modes=t.modes,
+                time_step=t.time_step, output_step=t.output_step, rtol=t.rtol, start=t.start, max_events=t.max_events)
+    if t.method == "moreau":
+        h = t.time_step
+        if h is not None:
+            budget.check_count("[run_up]", "time_step", h, budget.MAX_STEPS, "time steps", t.duration / h)
+    unb = [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
+    rubs = [Rub(x=r.x, clearance=r.clearance, stiffness=r.stiffness, damping=r.damping, restitution=r.restitution,
+                friction=r.friction, radius=r.radius, centre=tuple(r.centre), name=r.name) for r in doc.rub]
+    for i, r in enumerate(doc.rub, 1):
+        if t.method == "event" and r.stiffness is None:
+            raise ModelError(f"[[rub]] #{i}", "stiffness", None, "a contact stiffness for [run_up] method = 'event' "
+                             "(or method = 'moreau' for rigid contacts)")
+        if t.method == "moreau" and r.stiffness is not None:
+            raise ModelError(f"[[rub]] #{i}", "stiffness", r.stiffness, "no stiffness with [run_up] method = 'moreau' "
+                             "(rigid contacts with restitution; or method = 'event' for compliant contacts)")
+    if not unb and not rubs:
+        raise ModelError("model file (rotor)", "unbalance", [], "at least one [[unbalance]] or [[rub]] for drivefem "
+                         "simulate (without either the rotor stays at rest)")
+    return RunUpSpec(run=run, unbalances=unb, rubs=rubs)

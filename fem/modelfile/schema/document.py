@@ -25,7 +25,8 @@ from .drive import Drive
 from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
-from .rotor import CampbellTable, RotorAnalysis, RotorTable, UnbalanceResponseTable, UnbalanceTable
+from .rotor import (CampbellTable, RotorAnalysis, RotorTable, RubTable, RunUpTable, UnbalanceResponseTable,
+                    UnbalanceTable)
 from .simulation import Constants, Initial, Reduction, Simulation
 from .steady import Steady, Sweep
 
@@ -198,7 +199,11 @@ class RotorFile(ModelFileBase):
     unbalance_response: UnbalanceResponseTable | None = None
     """[unbalance_response]: speeds and probes of the unbalance response (drivefem forced)."""
     unbalance: _array(UnbalanceTable)
-    """[[unbalance]]: mass unbalances (drivefem forced)."""
+    """[[unbalance]]: mass unbalances (drivefem forced, drivefem simulate)."""
+    run_up: RunUpTable | None = None
+    """[run_up]: speed ramp, method and reduction of the transient run (drivefem simulate)."""
+    rub: _array(RubTable)
+    """[[rub]]: radial clearances with contact and friction: rotor-stator rub, bearing clearance (drivefem simulate)."""
 
 
 KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
@@ -242,7 +247,8 @@ HINTS = {
                   for k in ("load", "base_motion", "response")}},
     "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
     "rotor": {**{k: "not a table of rotor files (a [rotor] file has [rotor], [analysis], [campbell], "
-                 "[unbalance_response], [[unbalance]] and title)" for k in OTHER_KIND},
+                 "[unbalance_response], [[unbalance]], [run_up], [[rub]] and title)" for k in OTHER_KIND},
+              "simulation": "in a rotor file the transient run is [run_up] (with [[rub]] clearances)",
               "material": "in a rotor file the shaft material is [rotor.material]",
               "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",
               "support": "in a rotor file rigid supports are [[rotor.support]]"},

@@ -2,7 +2,7 @@
 ``[[rotor.disc]]``, ``[[rotor.bearing]]``, ``[[rotor.pedestal]]``, ``[[rotor.coupling]]``,
 ``[[rotor.support]]``, and the analyses ``[analysis]`` (modal at a speed; the default command),
 ``[campbell]`` (``drivefem campbell``), ``[unbalance_response]`` with ``[[unbalance]]``
-(``drivefem forced``).  The tables map field for field onto :mod:`fem.rotor.model`, which checks
+(``drivefem forced``), ``[run_up]`` with ``[[rub]]`` and ``[[unbalance]]`` (``drivefem simulate``).  The tables map field for field onto :mod:`fem.rotor.model`, which checks
 what involves positions along the shaft (discs, bearings on nodes) and the bearing tables' signs.
 
 Speeds are given in rad/s (``speed``, ``speeds``) or in rev/min (``speed_rpm``, ``speeds_rpm``),
@@ -14,7 +14,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Count, NonNegative, Positive, Table, rule
+from .base import Count, Fraction, NonNegative, Positive, Table, rule
 
 Coefficient = float | Annotated[list[float], Field(min_length=2)]
 
@@ -261,8 +261,9 @@ class RotorAnalysis(Table):
     ``drivefem demo`` run); the other keys are the complex modal analysis at one speed
     (``drivefem modal``)."""
 
-    type: Literal["modal", "forced", "campbell"] = "modal"
-    """Default command: modal (complex modes at a speed), forced (unbalance response), campbell."""
+    type: Literal["modal", "forced", "campbell", "simulate"] = "modal"
+    """Default command: modal (complex modes at a speed), forced (unbalance response), campbell,
+    simulate (the run-up of [run_up] with its rubs)."""
     speed: NonNegative | None = None
     """Modal: spin speed, rad/s (or speed_rpm; default 0)."""
     speed_rpm: NonNegative | None = None
@@ -343,3 +344,67 @@ class UnbalanceTable(Table):
     """m_u e, kg m."""
     phase_deg: float = 0.0
     """Angle from +y towards +z, degrees."""
+
+
+class RubTable(Table):
+    """``[[rub]]``: a stator ring of radial clearance around the shaft at a node (seal or casing rub, or
+    a bearing clearance: the bearing's stiffness as ``stiffness``, friction 0), for ``drivefem
+    simulate``.  Compliant contact (``stiffness``, ``damping``: [run_up] method = "event") or rigid
+    contact with Newton's restitution (no ``stiffness``: method = "moreau"); Coulomb friction at the
+    contact point.  Linear analyses (modal, campbell, forced) do not see it."""
+
+    x: float
+    """Position, m (a node)."""
+    clearance: Positive
+    """Radial clearance, m."""
+    stiffness: Positive | None = None
+    """Contact stiffness, N/m (leave out: a rigid contact)."""
+    damping: NonNegative = 0.0
+    """Contact damping, N s/m (compliant contact)."""
+    restitution: Fraction = 0.5
+    """Newton's restitution coefficient (rigid contact)."""
+    friction: NonNegative = 0.0
+    """Coulomb friction coefficient at the contact point."""
+    radius: Positive | None = None
+    """Shaft radius at the contact, m (the surface speed Omega R; default: half the outer diameter there)."""
+    centre: Annotated[list[float], Field(min_length=2, max_length=2)] = [0.0, 0.0]
+    """Offset [c_y, c_z] of the stator centre from the undeformed shaft axis, m."""
+    name: str = ""
+    """Label in outputs."""
+
+
+class RunUpTable(Table):
+    """``[run_up]``: a run-up (coast-down, constant speed) of ``drivefem simulate``: the speed goes
+    linearly from speed_start to speed_end over duration; the reduced rotor (modes at rest plus
+    attachment shapes at the rubs) is integrated with the [[rub]]s and [[unbalance]]s."""
+
+    speed_start: NonNegative | None = None
+    """First speed, rad/s (or speed_start_rpm)."""
+    speed_start_rpm: NonNegative | None = None
+    """First speed, rev/min."""
+    speed_end: NonNegative | None = None
+    """Last speed, rad/s (or speed_end_rpm; equal to speed_start: constant speed)."""
+    speed_end_rpm: NonNegative | None = None
+    """Last speed, rev/min."""
+    duration: Positive
+    """Duration of the ramp, s."""
+    method: Literal["event", "moreau"] = "event"
+    """event: compliant rubs, contact changes located exactly; moreau: rigid rubs (Moreau-Jean)."""
+    modes: Count = 12
+    """Retained modes at rest (plus two static attachment shapes per rub)."""
+    time_step: Positive | None = None
+    """Moreau-Jean step, s (default: a 40th of the shortest retained period)."""
+    output_step: Positive | None = None
+    """Sampling of the outputs, s (default: a 64th of the shortest revolution; at most 20 000 samples)."""
+    rtol: Annotated[float, Field(ge=1e-13, le=1e-3)] = 1e-8
+    """Relative tolerance of the event-located integrator."""
+    start: Literal["steady", "rest"] = "steady"
+    """steady: the linear synchronous orbit at speed_start; rest: zero displacement and velocity."""
+    max_events: Count = 100_000
+    """A chattering contact stops the run beyond this many contact events."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speed_start", "speed_start_rpm"), required=True)
+        _one_of(self, ("speed_end", "speed_end_rpm"), required=True)
+        return self
