@@ -30,10 +30,10 @@ demo: system-deps $(STAMP)
 	$(BIN)/drivefem demo
 
 test: system-deps $(STAMP)
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(BIN)/python -m pytest -q -m "not slow" -n auto
 
 test-slow: system-deps $(STAMP)
-	$(BIN)/python -m pytest -q -m slow
+	$(BIN)/python -m pytest -q -m slow -n auto
 
 validate: system-deps $(STAMP)
 	$(BIN)/drivefem validate --report validation-report
