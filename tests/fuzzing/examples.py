@@ -31,6 +31,7 @@ APPLICABLE = {
     "rotor": ("modal", "campbell", "forced"),
     "rotor_campbell": ("campbell", "modal", "forced"),
     "rotor_forced": ("forced", "modal", "campbell"),
+    "rotor_simulate": ("simulate", "modal", "campbell"),
     "other": ("modal", "forced", "simulate"),
 }
 
@@ -43,7 +44,7 @@ def kind_of(doc: dict) -> str:
     atype = doc.get("analysis", {}).get("type") if isinstance(doc.get("analysis"), dict) else None
     forced = atype == "forced"
     if "rotor" in doc:
-        return {"campbell": "rotor_campbell", "forced": "rotor_forced"}.get(atype, "rotor")
+        return {"campbell": "rotor_campbell", "forced": "rotor_forced", "simulate": "rotor_simulate"}.get(atype, "rotor")
     if atype == "parametric":
         return "parametric"
     if "drive" in doc:
@@ -147,4 +148,8 @@ def cheapen(doc: dict) -> tuple[dict, list[str]]:
     dr = d.get("drive")
     if isinstance(dr, dict):
         cap(dr, "n", 60, "[drive] ")
+    ru = d.get("run_up")
+    if isinstance(ru, dict):
+        cap(ru, "duration", None, "[run_up] ", scale=0.25)
+        cap(ru, "modes", 8, "[run_up] ")
     return d, notes
