@@ -292,6 +292,7 @@ class _Block:
     k_factor: tuple | None = None    # (K, factor, shift) of the cached factorisation
     sym_key: tuple | None = None     # (K, whether the block is a symmetric undamped problem)
     shifted: tuple | None = None     # (K, ShiftedSolver) for inertia counts
+    start: np.ndarray | None = None  # Arnoldi start from the previous solve of a sweep (warm starts)
 
 
 class QuadraticEigensolver:
@@ -321,6 +322,16 @@ class QuadraticEigensolver:
         # blocks in order of their first DOF (keeps results reproducible)
         self.blocks.sort(key=lambda b: int(b.dofs[0]))
         self._split_cache = {}
+        self.warm_start = False
+
+    def sweep(self, on: bool) -> None:
+        """Warm starts for a sweep over nearby problems (a Campbell diagram): while on, each Arnoldi
+        run starts from the previous run's wanted subspace (the sum of its Ritz vectors) instead of
+        the fixed vector; switching on or off forgets it, so a sweep's results depend only on its own
+        sequence of speeds (reproducible), and single solves keep the fixed start."""
+        self.warm_start = bool(on)
+        for b in self.blocks:
+            b.start = None
 
     def _blocks_of(self, A: sp.spmatrix | None, name: str) -> list:
         """The blocks of the free part of A (A None: the system's), cached while A is the same
@@ -510,6 +521,8 @@ class QuadraticEigensolver:
         ncv = min(N, max(2 * kk + 1, 24))
         A = spla.LinearOperator((N, N), matvec=op, dtype=float)
         start = np.random.default_rng(12345).uniform(0.5, 1.5, N)       # fixed start: reproducible results
+        if self.warm_start and b.start is not None and b.start.size == N:
+            start = b.start         # a sweep: the previous solve's wanted subspace (its order fixes the results)
         with _warnings.catch_warnings(), single_threaded_blas():
             _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
             try:
@@ -520,6 +533,9 @@ class QuadraticEigensolver:
                     raise SolverError("ARPACK did not converge for the quadratic eigenproblem") from None
         keep = np.abs(mu) > 0
         mu, Z = mu[keep], Z[:, keep]
+        if self.warm_start and Z.size:
+            W = Z / np.linalg.norm(Z, axis=0)
+            b.start = (W.real + W.imag).sum(axis=1)
         lam = sigma + 1.0 / mu
         top, bottom = Z[:n], Z[n:]
         # z = (phi, lam phi): take the better-scaled half

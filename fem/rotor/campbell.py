@@ -153,6 +153,15 @@ def campbell(rotor, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool =
     orders = _orders(orders)
     eig = eigen_workspace(rs)
     n_cand = min(n_modes + _extra(n_modes), rs.n_dofs - rs.constrained.size)
+    eig.solver.sweep(True)                  # warm starts from speed to speed (reproducible per diagram)
+    try:
+        result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
+    finally:
+        eig.solver.sweep(False)
+    return result
+
+
+def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol):
     ns = s.size
     wd = np.zeros((ns, n_modes))
     wn, ld, zeta = np.zeros_like(wd), np.zeros_like(wd), np.zeros_like(wd)
