@@ -73,7 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
     k.set_defaults(func=commands.schema)
     d = sub.add_parser("demo", help="run representative examples end to end into ./drivefem-demo/")
     d.add_argument("--out", default="drivefem-demo")
-    d.set_defaults(func=commands.demo)
+    d.set_defaults(func=lambda args: commands.demo(args, main))
     from . import parametric as parametric_command
 
     parametric_command.add_parser(sub)

@@ -218,8 +218,9 @@ def schema(args) -> int:
 
 
 # ----------------------------------------------------------------- demo
-def demo(args) -> int:
+def demo(args, run_command) -> int:
+    """``drivefem demo``: ``run_command`` is the command line's ``main`` (each example runs through it)."""
     from .demo import run_demo
 
     _outputs(args, out=True)
-    return run_demo(Path(args.out))
+    return run_demo(Path(args.out), run_command)

@@ -55,9 +55,9 @@ def _python_examples(out: Path):
         print()
 
 
-def run_demo(out: Path) -> int:
-    from . import cli
-
+def run_demo(out: Path, run_command) -> int:
+    """Every example through ``run_command(argv) -> exit code`` (the command line's ``main``, passed in
+    by the demo command so that this module does not import the command line back)."""
     out.mkdir(parents=True, exist_ok=True)
     summary, failures = [], 0
     examples = sorted(EXAMPLES.glob("*.toml"))
@@ -82,7 +82,7 @@ def run_demo(out: Path) -> int:
         else:
             argv += ["--csv", f"{stem}.csv", "--png", str(out / f"{path.stem}_plots")]
         print(f"$ drivefem {' '.join(argv)}")
-        rc = cli.main(argv)
+        rc = run_command(argv)
         dt = time.perf_counter() - t0
         failures += rc != 0
         summary.append((path.name, kind, rc, dt))
@@ -91,7 +91,7 @@ def run_demo(out: Path) -> int:
                         ("stepped_rotor_timoshenko.toml", [])):
         argv = ["render", str(EXAMPLES / name), "--modes", "4", "--out", str(out / "render" / Path(name).stem)] + extra
         print(f"$ drivefem {' '.join(argv)}")
-        rc = cli.main(argv)
+        rc = run_command(argv)
         failures += rc != 0
         summary.append((name, "render", rc, 0.0))
         print()
@@ -99,7 +99,7 @@ def run_demo(out: Path) -> int:
         failures += rc != 0
         summary.append((name, "python", rc, dt))
     print("$ drivefem validate --fast --report", out / "validation")
-    rc = cli.main(["validate", "--fast", "--quiet", "--report", str(out / "validation"),
+    rc = run_command(["validate", "--fast", "--quiet", "--report", str(out / "validation"),
                    "--json", str(out / "validation" / "validation.json")])
     failures += rc != 0
     summary.append(("validation catalogue (fast tier)", "validate", rc, 0.0))
