@@ -18,16 +18,15 @@ rotor's at the speeds asked for (:meth:`ReducedRotor.frequency_check`).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.errors import ModelError, SolverError
+from discrete.errors import ModelError
 from discrete.linear.modal import modal_analysis
-from discrete.linear_system import LinearSystem
 
 from .assembly import RotorSystem
 
@@ -158,14 +157,12 @@ def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_spe
     contact_dofs = np.asarray(contact_dofs, dtype=int).reshape(-1, 2)
     Ks = _symmetric(rs.stiffness(reference_speed))
     base = rs.system_at(reference_speed)
-    sym = LinearSystem(M=rs.M, K=Ks, C=base.C, dof_field=base.dof_field, dof_x=base.dof_x, dof_name=base.dof_name,
-                       constrained=base.constrained, title=base.title, physics="rotor")
-    free = np.setdiff1d(np.arange(rs.n_dofs), rs.constrained)
+    free = base.free
     n_free = free.size
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n_free:
         raise ModelError("[run_up]", "modes", n_modes, f"an integer from 1 to {n_free} (the rotor's free DOFs)")
-    Kff = Ks[free][:, free].tocsc()
-    Mff = rs.M[free][:, free].tocsc()
+    Kff = base.free_block(Ks).tocsc()
+    Mff = base.free_block(rs.M).tocsc()
     try:
         lu = spla.splu(Kff)
         positive = _nonsingular(Kff, lu)
@@ -177,7 +174,7 @@ def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_spe
         mode_shapes = np.zeros((rs.n_dofs, shapes_free.shape[1]))
         mode_shapes[free] = shapes_free
     else:                                   # a rotor without supports: rigid-body modes (discrete.linear.modal)
-        modes = modal_analysis(sym, int(n_modes), tolerance=1e-6)
+        modes = modal_analysis(replace(base, K=Ks), int(n_modes), tolerance=1e-6)
         warnings += list(modes.warnings)
         mode_shapes = modes.shapes
     shapes = [mode_shapes]

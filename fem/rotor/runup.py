@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from discrete import checks
 from discrete.errors import ModelError
 from discrete.nonsmooth.elements.radial import RadialClearance
 
@@ -74,25 +75,15 @@ class RunUp:
     def check(self) -> None:
         where = "[run_up]"
         for key in ("speed_start", "speed_end"):
-            v = getattr(self, key)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
-                raise ModelError(where, key, v, "a speed >= 0 rad/s")
-        if isinstance(self.duration, bool) or not isinstance(self.duration, (int, float)) \
-                or not math.isfinite(self.duration) or self.duration <= 0:
-            raise ModelError(where, "duration", self.duration, "a duration > 0 s")
-        if self.method not in METHODS:
-            raise ModelError(where, "method", self.method, "one of " + ", ".join(map(repr, METHODS)))
-        if self.start not in STARTS:
-            raise ModelError(where, "start", self.start, "one of " + ", ".join(map(repr, STARTS)))
+            checks.non_negative(where, key, getattr(self, key), "a speed in rad/s")
+        checks.positive(where, "duration", self.duration, "s")
+        checks.choice(where, "method", self.method, METHODS)
+        checks.choice(where, "start", self.start, STARTS)
         for key in ("time_step", "output_step"):
-            v = getattr(self, key)
-            if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)
-                                  or not 0 < v <= self.duration):
-                raise ModelError(where, key, v, f"a step > 0 and <= duration = {self.duration:g} s")
-        if isinstance(self.rtol, bool) or not isinstance(self.rtol, (int, float)) or not 1e-13 <= self.rtol <= 1e-3:
-            raise ModelError(where, "rtol", self.rtol, "a relative tolerance in [1e-13, 1e-3]")
-        if isinstance(self.max_events, bool) or not isinstance(self.max_events, int) or self.max_events < 1:
-            raise ModelError(where, "max_events", self.max_events, "an integer >= 1")
+            checks.optional(checks.bounded, where, key, getattr(self, key), (">", 0.0), ("<=", self.duration),
+                            "s: a step no longer than the duration")
+        checks.bounded(where, "rtol", self.rtol, (">=", 1e-13), ("<=", 1e-3), "relative tolerance")
+        checks.integer(where, "max_events", self.max_events, 1)
 
 
 @dataclass
@@ -201,13 +192,13 @@ def _regime(t: np.ndarray, speed: np.ndarray, contact: np.ndarray) -> np.ndarray
     if not t.size:
         return out
     c = np.concatenate([[0], np.cumsum(contact.astype(int))])
-    for k in range(t.size):
-        T_rev = 2 * math.pi / max(speed[k], 1e-12)
-        i0 = int(np.searchsorted(t, t[k] - T_rev))
-        if t[k] - T_rev < t[0]:
-            i0 = 0
-        m = c[k + 1] - c[i0]
-        out[k] = "none" if m == 0 else "full" if m == k + 1 - i0 and t[k] - t[i0] >= 0.95 * T_rev else "partial"
+    k = np.arange(t.size)
+    T_rev = 2 * math.pi / np.maximum(speed, 1e-12)
+    i0 = np.searchsorted(t, t - T_rev)               # first sample of the revolution ending at t[k]
+    m = c[k + 1] - c[i0]
+    full = (m == k + 1 - i0) & (t - t[i0] >= 0.95 * T_rev)
+    out[m > 0] = "partial"
+    out[(m > 0) & full] = "full"
     return out
 
 

@@ -98,6 +98,11 @@ class Trajectory:
     warnings: list = field(default_factory=list)
 
 
+def _mechanical(eta, v, Ks) -> float:
+    """Kinetic + strain energy of the reduced rotor (M = I) with the symmetric stiffness Ks."""
+    return float(0.5 * v @ v + 0.5 * eta @ Ks @ eta)
+
+
 class _Model:
     """The reduced rotor's forces at (t, eta, eta') with the contacts' kinematics."""
 
@@ -127,8 +132,7 @@ class _Model:
 
     def energy(self, t, eta, v, engaged) -> float:
         """Kinetic + strain energy, with the energy of the engaged contacts."""
-        _, _, Ks, _, _ = self.matrices(t)
-        E = 0.5 * v @ v + 0.5 * eta @ Ks @ eta
+        E = _mechanical(eta, v, self.matrices(t)[2])
         for j, c in enumerate(self.contacts):
             if engaged[j]:
                 E += float(c.potential(self.by[j] @ eta, self.bz[j] @ eta))
@@ -329,7 +333,6 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
     events = []
     pen = np.zeros(nc)
     Ks_prev = None
-    E0 = mdl.energy(0.0, q, v, [False] * nc)
     last_P = np.zeros((nc, 2))
     last_slip = np.zeros(nc)
     next_out = 0
@@ -353,7 +356,7 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
         Om = float(ramp.speed(tm))
         K, C, Ks, Kskew, Cs = mdl.matrices(tm)
         if Ks_prev is None:
-            E0 = float(0.5 * v @ v + 0.5 * q @ Ks @ q)      # the balance's reference: the first step's stiffness
+            E0 = _mechanical(q, v, Ks)      # the balance's reference: the first step's stiffness
         else:
             works["parametric"] += 0.5 * q @ (Ks - Ks_prev) @ q
         Ks_prev = Ks
@@ -444,7 +447,7 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
         record(k + 1, t1)
         if progress is not None and k % 1000 == 0:
             progress(t1 / t_end)
-    E_now = float(0.5 * v @ v + 0.5 * q @ Ks_prev @ q) if Ks_prev is not None else E0
+    E_now = _mechanical(q, v, Ks_prev)         # steps >= 1: Ks_prev is the last step's stiffness
     return Trajectory(t=np.array(rec_t), eta=np.array(rec_q).reshape(-1, n), eta_dot=np.array(rec_v).reshape(-1, n),
                       normal_force=np.array(rec_N).reshape(-1, nc), slip=np.array(rec_s).reshape(-1, nc),
                       in_contact=np.array(rec_c, dtype=bool).reshape(-1, nc), events=events, works=works,

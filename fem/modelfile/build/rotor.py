@@ -121,6 +121,11 @@ def modes_count(doc, table=None, n_modes: int | None = None) -> int:
     return 6
 
 
+def _unbalances(doc) -> list:
+    """The [[unbalance]] tables as :class:`fem.rotor.Unbalance` (degrees -> rad)."""
+    return [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
+
+
 @dataclass
 class ResponseSpec:
     """What ``drivefem forced`` needs: unbalances, speeds (rad/s), probes, operating range."""
@@ -149,7 +154,7 @@ def response_spec(doc) -> ResponseSpec:
     if op is not None and not op[0] <= op[1]:
         raise ModelError("[unbalance_response]", "operating_range", list(op), "[min, max] with min <= max")
     probes = [Probe(p.x, p.direction) for p in t.probe] or None
-    unb = [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
+    unb = _unbalances(doc)
     return ResponseSpec(unbalances=unb, speeds=speeds, probes=probes,
                         operating_range=None if op is None else (float(op[0]), float(op[1])), find_peaks=t.peaks)
 
@@ -179,7 +184,7 @@ def run_up_spec(doc) -> RunUpSpec:
         h = t.time_step
         if h is not None:
             budget.check_count("[run_up]", "time_step", h, budget.MAX_STEPS, "time steps", t.duration / h)
-    unb = [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
+    unb = _unbalances(doc)
     rubs = [Rub(x=r.x, clearance=r.clearance, stiffness=r.stiffness, damping=r.damping, restitution=r.restitution,
                 friction=r.friction, radius=r.radius, centre=tuple(r.centre), name=r.name) for r in doc.rub]
     for i, r in enumerate(doc.rub, 1):
