@@ -3,6 +3,7 @@ locations, kills at random moments with resume, and two runs on one directory --
 import json
 import os
 import random
+import select
 import signal
 import subprocess
 import sys
@@ -102,6 +103,21 @@ def _computed(stderr: str) -> int:
     return int(line.split(";")[-1].split()[0])
 
 
+def _wait_for_start(proc, timeout=120.0):
+    """Block until the sweep has opened its store (its "sweep: N points" line), so that a kill lands while
+    points are being computed, whatever the start-up time on a loaded machine."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([proc.stderr], [], [], 0.5)
+        if ready:
+            line = proc.stderr.readline()
+            if " points, " in line or not line:
+                return
+        elif proc.poll() is not None:
+            return
+    raise AssertionError("the sweep did not start within the timeout")
+
+
 def test_kills_at_random_moments_lose_and_duplicate_nothing(tmp_path):
     """Three SIGKILLs at random moments, then a resume: every point present and trusted, no finished point
     file ever rewritten (same inode and mtime), results bit-identical to an uninterrupted run."""
@@ -115,7 +131,8 @@ def test_kills_at_random_moments_lose_and_duplicate_nothing(tmp_path):
     kills = 0
     for _ in range(3):
         proc = _start(p, out)
-        time.sleep(rng.uniform(1.8, 3.0))           # start-up ~1.5 s, then a point every ~0.25 s
+        _wait_for_start(proc)                       # start-up takes 1.5 s to several s under a loaded machine
+        time.sleep(rng.uniform(0.0, 1.2))           # then a point every ~0.25 s
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
             kills += 1
