@@ -39,6 +39,16 @@ def is_diagonal(A: sp.spmatrix) -> bool:
     return bool(np.array_equal(A.indices, np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))))
 
 
+def sturm_count(d: np.ndarray, e: np.ndarray) -> int:
+    """Number of negative eigenvalues of the symmetric tridiagonal matrix with diagonal d and
+    off-diagonal e: LAPACK ``dstebz`` with a tolerance wider than the spectrum counts at the
+    interval ends and bisects nothing (it counts (-inf, 0]: callers take the count between
+    eigenvalues, never on one)."""
+    if d.size == 1:
+        return int(d[0] < 0)
+    return int(lapack.dstebz(d, e, 1, -np.inf, 0.0, 0, 0, np.inf, "B")[0])
+
+
 class ShiftedSolver:
     """Solves ``(K - s_j M) x_j = b_j`` for a set of shifts ``s_j`` (see the module notes).
 
@@ -203,11 +213,7 @@ class ShiftedSolver:
             e = self._core_subdiagonal(s)[0, :-1] if b == 1 else np.zeros(nc - 1)
             if nc == 1:
                 return negative + int(diag[0, 0] < 0)
-            # Sturm count of the tridiagonal Schur complement: dstebz with a tolerance wider
-            # than the spectrum counts at the interval ends and bisects nothing (it counts
-            # (-inf, 0]: callers take the count between eigenvalues, never on one)
-            m = lapack.dstebz(diag[0], e, 1, -np.inf, 0.0, 0, 0, np.inf, "B")[0]
-            return negative + int(m)
+            return negative + sturm_count(diag[0], e)
         core = self.core_idx
         S = (sp.csr_matrix(self._K)[core][:, core] - shift * sp.csr_matrix(self._M)[core][:, core]).tolil()
         S.setdiag(diag[0])

@@ -16,7 +16,7 @@ from discrete.linear.complex_modal import ComplexModalResult, ComplexModeFigures
 
 from .assembly import RotorSystem, assemble_rotor
 from .model import Rotor
-from .whirl import Orbits, classify
+from .whirl import Orbits, classify_orbits
 
 
 @dataclass
@@ -66,16 +66,16 @@ class RotorModes(ComplexModeFigures):
                 "rigid_body_modes": int(self.rigid.sum()), "method": self.method, "warnings": list(self.warnings)}
 
 
-_LATERAL_FIELDS = ("v", "w", "theta_y", "theta_z", "pedestal_v", "pedestal_w")
-
-
 def _kinds(rs: RotorSystem, shapes: np.ndarray, rigid: np.ndarray) -> list:
     """lateral / axial / torsion by where each shape is largest (the motions decouple), rigid first."""
     a = np.abs(shapes)
-    lat = np.isin(rs.dof_field, _LATERAL_FIELDS)
+    none = np.zeros(0, dtype=int)
+    iu, it = rs.node_dofs.get("u", none), rs.node_dofs.get("theta_x", none)
+    lat = np.ones(a.shape[0], dtype=bool)          # every other DOF (shaft and pedestals) is lateral
+    lat[iu] = lat[it] = False
     amp_lat = a[lat].max(axis=0, initial=0.0)
-    amp_u = a[rs.dof_field == "u"].max(axis=0, initial=0.0)
-    amp_t = a[rs.dof_field == "theta_x"].max(axis=0, initial=0.0)
+    amp_u = a[iu].max(axis=0, initial=0.0)
+    amp_t = a[it].max(axis=0, initial=0.0)
     out = []
     for r in range(shapes.shape[1]):
         if rigid[r]:
@@ -96,7 +96,7 @@ def describe_modes(rs: RotorSystem, res: ComplexModalResult) -> RotorModes:
     kind = _kinds(rs, res.shapes, res.rigid)
     for r, k in enumerate(kind):
         if k == "lateral":
-            w, q = classify(V[r], W[r])
+            w, q = classify_orbits(Orbits(orb.forward[r], orb.backward[r], orb.angle[r]))
         else:
             w, q = "none", 0.0
         whirl.append(w)

@@ -59,7 +59,11 @@ def classify(V: np.ndarray, W: np.ndarray) -> tuple[str, float]:
     forward/backward: every node whose orbit exceeds ``SIGNIFICANT`` of the largest whirls that
     way; mixed: some forward and some backward; planar: straight-line orbits (a repeated
     frequency at zero speed, whose pair can be combined into any orbit)."""
-    o = Orbits.of(V, W)
+    return classify_orbits(Orbits.of(V, W))
+
+
+def classify_orbits(o: Orbits) -> tuple[str, float]:
+    """:func:`classify` of one mode's orbits (1D over the shaft nodes)."""
     size = o.major
     if not np.any(size > 0):
         return "none", 0.0
