@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .result import state_velocities
+
 
 def detect_period(result, rtol: float = 1e-7, vtol: float = 1e-6, cycles: int = 2, max_events: int = 400):
     ev = result.events[-max_events:]
@@ -20,7 +22,7 @@ def detect_period(result, rtol: float = 1e-7, vtol: float = 1e-6, cycles: int = 
     t = np.array([e.t for e in ev])
     keys = [(e.kind, e.element) for e in ev]
     names = list(ev[0].state)
-    V = np.array([[e.state[k]["v"] for k in names] for e in ev])
+    V = state_velocities([e.state for e in ev], names)
     vscale = max(float(np.max(np.abs(V))), 1e-300)
     for p in range(1, n // (cycles + 1) + 1):
         need = cycles * p + 1          # events whose predecessor p back also exists

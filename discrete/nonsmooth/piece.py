@@ -89,7 +89,7 @@ def _taylor_terms(A: np.ndarray, h: float):
     largest = 1.0
     for j in range(1, TAYLOR_MAX + 1):
         T = (T @ Ab) * (h / j)
-        size = float(np.max(np.sum(np.abs(T), axis=0)))
+        size = float(np.abs(T).sum(axis=0).max())
         if size == 0.0:           # nilpotent (stick, polynomial drives): the series is finite, exact
             break
         largest = max(largest, size)
@@ -103,7 +103,7 @@ def _taylor_terms(A: np.ndarray, h: float):
     else:
         return None
     # back to the original coordinates: D T D^-1 (scale: powers of two, exact)
-    return np.ascontiguousarray(np.array([t * scale[:, None] / scale[None, :] for t in terms]))
+    return np.ascontiguousarray(np.array(terms) * scale[None, :, None] / scale[None, None, :])
 
 
 def power_form(prob, mode, Fm, Sdm) -> dict:
@@ -124,12 +124,11 @@ def power_form(prob, mode, Fm, Sdm) -> dict:
     pd, pz = P(D), P(Z)
     out = {}
     for part in prob.WORK_PARTS:
+        d, z = np.asarray(pd[part], dtype=float), np.asarray(pz[part], dtype=float)
         Q = np.zeros((nz, nz))
-        for k, (i, j) in enumerate(zip(*iu)):
-            if i == j:
-                Q[i, i] = pd[part][i]
-            else:
-                Q[i, j] = Q[j, i] = 0.5 * (pz[part][k] - pd[part][i] - pd[part][j])
-        if np.any(Q):
+        Q[iu] = 0.5 * (z - d[iu[0]] - d[iu[1]])            # off-diagonal by polarization
+        Q[iu[1], iu[0]] = Q[iu]
+        Q[np.diag_indices(nz)] = d                          # (the diagonal's own values)
+        if Q.any():
             out[part] = Q
     return out

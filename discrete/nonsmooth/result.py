@@ -42,6 +42,17 @@ class EventState(Mapping):
         return dict, (self._dict(),)
 
 
+def state_velocities(states, names) -> np.ndarray:
+    """(n_states, n_names) velocities ``state[name]["v"]`` of event states: read straight from the
+    run's array when they are :class:`EventState` views of one run (no dictionaries built)."""
+    first = states[0] if states else None
+    if type(first) is EventState and all(type(s) is EventState and s._v is first._v and s._names is first._names
+                                         for s in states):
+        rows = [first._names.index(k) for k in names]
+        return first._v[np.ix_(rows, [s._k for s in states])].T.astype(float)
+    return np.array([[s[k]["v"] for k in names] for s in states], dtype=float)
+
+
 @dataclass
 class Event:
     t: float

@@ -150,7 +150,9 @@ class EventDrivenSolver:
             if p.time_invariant:
                 self._projections[key] = rd
         r, d = rd
-        return z + d * (target - r @ z)
+        out = d * (target - r @ z)
+        out += z
+        return out
 
     def _project_velocity(self, t, z, i, target):
         return self._project(t, z, i, target, velocity=True)
@@ -386,7 +388,7 @@ class EventDrivenSolver:
         z, records, before = ctx.z, ctx.records, ctx.modes
         mode = self._consistent_mode(t, z, before, ctx.limits)
         if mode != before:
-            recorded = {r[0] for r in records}
+            recorded = [r[0] for r in records]
             for i, el in enumerate(elements):
                 if mode[i] != before[i] and i not in recorded:
                     records.append([i, el.release_event()])
