@@ -420,6 +420,8 @@ class QuadraticEigensolver:
                 break
         else:
             parts = _block_map(A, self._label, self._local, [b.dofs.size for b in self.blocks])
+            if len(self._maps) >= 8:                   # a caller passing ever new patterns: keep the recent
+                self._maps.pop(0)
             self._maps.append((A, parts))
         return _gather(A, parts)
 
@@ -744,6 +746,10 @@ class _TridiagonalFactor:
     def solve_columns(self, B: np.ndarray) -> np.ndarray:
         x, info = lapack.dpttrs(self.d, self.e, B)
         return x
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """One right-hand side (the Lanczos fallback's operator)."""
+        return self.solve_columns(np.asarray(b, dtype=float))
 
 
 def _subspace_iteration(K, M, k, fac, tol: float = 1e-14, max_iter: int = 60):
