@@ -26,7 +26,7 @@ def test_ctrl_c_keeps_the_partial_simulation(tmp_path):
     start_up = time.monotonic() - started           # this short run is almost all start-up, on this machine's load
     # minutes of work at ~40 000 events/s (a deliberate run beyond the default step budget), so the
     # interrupt lands in the integration however fast the machine is
-    env = dict(os.environ, DRIVEFEM_BUDGET="20")
+    env = dict(os.environ, DRIVEFEM_BUDGET="100")
     proc = subprocess.Popen([sys.executable, "-m", "fem.app.cli", "simulate", str(model), "--json", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT, env=env)
     time.sleep(max(8.0, 2.5 * start_up))            # imports and set-up, then a few seconds of integration

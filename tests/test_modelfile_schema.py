@@ -168,6 +168,21 @@ def test_simulation_keys_belong_to_their_method():
         Study.parse(doc)
 
 
+def test_event_allowance_is_budgeted(monkeypatch):
+    """max_events keeps two recorded states per event in memory: 1e8 is refused with the factor it
+    needs (a run of that size once filled 23 GB), the default and the budgeted run are accepted."""
+    doc = example("discrete_seed000_stick_slip.toml")
+    doc["simulation"]["max_events"] = 100_000_000
+    with pytest.raises(ModelError, match=r"\[simulation\]: max_events = 100000000 .*recorded instants.*"
+                                         r"DRIVEFEM_BUDGET >= 100"):
+        Study.parse(doc)
+    monkeypatch.setenv("DRIVEFEM_BUDGET", "100")
+    Study.parse(doc)
+    monkeypatch.delenv("DRIVEFEM_BUDGET")
+    doc["simulation"]["max_events"] = 1_000_000
+    Study.parse(doc)
+
+
 def test_budget_of_a_stiff_or_tiny_model():
     doc = example("discrete_coulomb_decay.toml")
     doc["body"][0]["inertia"] = 1e-300
