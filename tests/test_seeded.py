@@ -276,3 +276,19 @@ def test_zero_start_row_is_bad_input():
     start[2] = 0.0
     with pytest.raises(ModelError, match="start"):
         seeded_eigenpairs(K, M, lam[:7], 6, start=start)
+
+
+def test_stiffness_check_on_the_seeded_path_uses_the_solvers_count():
+    """With seeds, the stiffness check counts through the ShiftedSolver that the seeded solver then
+    uses (a Sturm count for a chain): a negative spring is still refused, naming the count, and
+    the certified result is unchanged."""
+    rng = np.random.default_rng(8)
+    K, M = _chain(120, rng)
+    lam = sla.eigh(K, M, eigvals_only=True)
+    res = modal_analysis(_system(K, M), 5, seeds=lam[:6] * 1.001)
+    assert res.method.startswith("seeded") and np.allclose(res.eigenvalues, lam[:5], rtol=1e-10)
+    Kneg = K.copy()
+    Kneg[60, 60] -= 40.0                       # a grounded spring of -40: one negative eigenvalue
+    assert np.sum(sla.eigh(Kneg, M, eigvals_only=True) < 0) == 1
+    with pytest.raises(ModelError, match=r"1 eigenvalue\(s\) below the round-off bound, Sylvester count"):
+        modal_analysis(_system(Kneg, M), 5, seeds=np.abs(lam[:6]) * 1.001)

@@ -58,7 +58,7 @@ class SeededSolution:
 
 
 def seeded_eigenpairs(K: sp.spmatrix, M: sp.spmatrix, seeds_lambda, n_modes: int, *, start=None,
-                      tol: float = 1e-6, max_sweeps: int = 12) -> SeededSolution:
+                      tol: float = 1e-6, max_sweeps: int = 12, solver: ShiftedSolver | None = None) -> SeededSolution:
     """Lowest ``n_modes`` eigenpairs of K phi = lam M phi from ``n_modes + 1`` (or more)
     eigenvalue estimates ``seeds_lambda`` (rad^2/s^2) and, optionally, estimates of their
     vectors ``start`` (one row per seed; random vectors otherwise).  K positive definite
@@ -67,7 +67,8 @@ def seeded_eigenpairs(K: sp.spmatrix, M: sp.spmatrix, seeds_lambda, n_modes: int
     the last measured inverse iteration times the observed contraction per iteration -- an
     estimate within the block, blind to modes far outside it, resolved down to
     ``CHANGE_FLOOR`` = 1e-7; the iteration also stops when that change stagnates below 1e-6.  Before the certificate the returned vectors
-    are checked for independence (two estimates drawn to one mode raise)."""
+    are checked for independence (two estimates drawn to one mode raise).  ``solver``: the
+    :class:`ShiftedSolver` of (K, M) when the caller has built it already."""
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
         raise ModelError("seeds", "n_modes", n_modes, "an integer >= 1")
     seeds = np.asarray(seeds_lambda, dtype=float)
@@ -82,13 +83,13 @@ def seeded_eigenpairs(K: sp.spmatrix, M: sp.spmatrix, seeds_lambda, n_modes: int
     if q >= n:
         raise ModelError("seeds", "size", q, f"fewer than the {n} free DOFs")
     with single_threaded_blas():
-        return _iterate(K, M, seeds, order, n_modes, start, tol, max_sweeps)
+        return _iterate(K, M, seeds, order, n_modes, start, tol, max_sweeps, solver)
 
 
-def _iterate(K, M, seeds, order, n_modes, start, tol, max_sweeps) -> SeededSolution:
+def _iterate(K, M, seeds, order, n_modes, start, tol, max_sweeps, solver=None) -> SeededSolution:
     n, q = K.shape[0], seeds.size
     mass = _mass_product(M)
-    solver = ShiftedSolver(K, M)
+    solver = solver if solver is not None else ShiftedSolver(K, M)
     factors = _factor(solver, seeds)
     if start is None:
         V = np.random.default_rng(12345).uniform(-1.0, 1.0, (q, n))      # one vector per row

@@ -180,8 +180,11 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     lam_max = lambda_scale(K, M)
     rigid_level = 1e3 * EPS * lam_max
     zero_level = max(rigid_level, _declared_rigid_level(system, K, M))
-    _check_stiffness(system, K, M, zero_level, lam_max)
     n_rigid = None if system.rigid_modes is None else system.rigid_modes.shape[1]
+    # the seeded solver factorises through a ShiftedSolver (leaf condensation, banded core): built
+    # once here, it also gives the stiffness check its Sylvester count (a Sturm count for a drive)
+    counter = _shifted_solver(K, M) if seeds is not None and not n_rigid else None
+    _check_stiffness(system, K, M, zero_level, lam_max, counter)
     # Shift-invert resolves the low modes to near-relative accuracy (it iterates with K^-1,
     # whose dominant eigenvalues are the ones wanted); the dense solver's error is
     # eps*lam_max in absolute terms, so it is used only for tiny systems or when (almost)
@@ -208,7 +211,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
         if shift is not None:
             notes.append(f"shift = {shift!r} not used: the seeded solver places its own shifts at the seeds")
         lam, vec, sigma, method, more, solver = _seeded_or_lanczos(K, M, n_modes, seeds, seed_vectors, lam_max,
-                                                                   rigid_level)
+                                                                   rigid_level, counter)
         notes += more
     else:
         if seeds is not None:
@@ -341,12 +344,28 @@ def _check_mass(system: LinearSystem, M) -> None:
                          "LDL^T pivots of M + that bound): a negative mass, inertia or density, or a sign error in M")
 
 
-def _check_stiffness(system: LinearSystem, K, M, zero_level: float, lam_max: float) -> None:
-    """No eigenvalue of (K, M) below -zero_level: the Sylvester count of K + zero_level M is 0."""
+def _shifted_solver(K, M) -> ShiftedSolver | None:
+    try:
+        return ShiftedSolver(K, M)
+    except SolverError:
+        return None
+
+
+def _check_stiffness(system: LinearSystem, K, M, zero_level: float, lam_max: float,
+                     counter: ShiftedSolver | None = None) -> None:
+    """No eigenvalue of (K, M) below -zero_level: the Sylvester count of K + zero_level M is 0
+    (from ``counter``'s condensed LDL^T when given, else SuperLU's symmetric-mode LDL^T)."""
     n = K.shape[0]
     if n > INERTIA_MAX:
         return
-    count = _negative_count(K + zero_level * M)
+    count = None
+    if counter is not None:
+        try:
+            count = counter.inertia(-zero_level)
+        except SolverError:
+            count = None
+    if count is None:
+        count = _negative_count(K + zero_level * M)
     if not count:
         return
     value = None                      # the lowest eigenvalue, where a dense solve is affordable and M regular
@@ -420,11 +439,12 @@ def _dense_both_ends(K, M, k: int) -> tuple[np.ndarray, np.ndarray]:
     return lam, vec
 
 
-def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
+def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level, counter=None):
     """The seeded solver, or -- if it cannot certify its result -- shift-invert Lanczos at a
-    shift below the seeds that a Sylvester count shows to lie below the lowest eigenvalue."""
+    shift below the seeds that a Sylvester count shows to lie below the lowest eigenvalue
+    (``counter``: the ShiftedSolver of (K, M), when already built)."""
     try:
-        sol = seeded_eigenpairs(K, M, seeds, k, start=seed_vectors)
+        sol = seeded_eigenpairs(K, M, seeds, k, start=seed_vectors, solver=counter)
     except ModelError:
         raise                                      # bad seeds given by the caller: say so
     except (SolverError, ValueError, np.linalg.LinAlgError) as exc:      # not certified, or a numerical failure
@@ -435,7 +455,7 @@ def _seeded_or_lanczos(K, M, k, seeds, seed_vectors, lam_max, rigid_level):
         return sol.eigenvalues, sol.vectors, float(np.min(seeds)), sol.describe(), notes, ""
     sigma = 0.99 * float(np.min(seeds))
     try:
-        counter = ShiftedSolver(K, M)
+        counter = counter or ShiftedSolver(K, M)
         for _ in range(60):
             if counter.inertia(sigma) == 0:
                 break
