@@ -80,7 +80,7 @@ class BandedLU:
         n = P.shape[0]
         self.n = n
         self.indptr, self.indices = P.indptr, P.indices
-        rows = np.repeat(np.arange(n), np.diff(P.indptr))
+        rows = _csr_rows(P)
         cols = P.indices
         natural = int(np.max(np.abs(rows - cols))) if cols.size else 0
         perm = np.arange(n)
@@ -287,6 +287,11 @@ def _norm1(A: sp.spmatrix | None) -> float:
     return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
 
 
+def _csr_rows(A: sp.csr_matrix) -> np.ndarray:
+    """The row index of every stored entry of the CSR matrix A (int64: safe in row * n + col keys)."""
+    return np.repeat(np.arange(A.shape[0], dtype=np.int64), np.diff(A.indptr))
+
+
 def _canonical(A: sp.spmatrix) -> sp.csr_matrix:
     """A as CSR with sorted, unique indices (A itself when it already is)."""
     A = A if sp.isspmatrix_csr(A) else sp.csr_matrix(A)
@@ -306,7 +311,7 @@ def _block_map(A: sp.csr_matrix, label: np.ndarray, local: np.ndarray, sizes) ->
     """Where each block's entries lie in the canonical CSR matrix A (label: block of each row
     and column index, -1 for none; local: its index within the block): per block the positions
     in A.data and the block's CSR indices and indptr (row-major order is kept: canonical)."""
-    rows = np.repeat(np.arange(A.shape[0]), np.diff(A.indptr))
+    rows = _csr_rows(A)
     lr = label[rows]
     keep = (lr >= 0) & (lr == label[A.indices])
     parts = []
@@ -323,10 +328,10 @@ def _gather(A: sp.csr_matrix, parts: list) -> list:
 
 
 def _same(a: sp.csr_matrix | None, b: sp.csr_matrix | None) -> bool:
-    if a is None or b is None or a.shape != b.shape or a.nnz != b.nnz:
+    """Same matrix: the same pattern and the same values."""
+    if a is None or b is None:
         return False
-    return (a is b) or (np.array_equal(a.indptr, b.indptr) and np.array_equal(a.indices, b.indices)
-                        and np.array_equal(a.data, b.data))
+    return (a is b) or (_same_pattern(a, b) and np.array_equal(a.data, b.data))
 
 
 @dataclass
@@ -381,7 +386,7 @@ class QuadraticEigensolver:
             local[free] = np.arange(free.size)
             rows, cols = [], []
             for A, nz in groups:
-                r = local[np.repeat(np.arange(n_all), np.diff(A.indptr))[nz]]
+                r = local[_csr_rows(A)[nz]]
                 c = local[A.indices[nz]]
                 ok = (r >= 0) & (c >= 0)
                 rows.append(r[ok])
@@ -692,7 +697,7 @@ def _transpose_positions(A: sp.csr_matrix) -> np.ndarray | None:
     if hit is not None and hit[0] is A.indices and hit[1] is A.indptr:
         return hit[2]
     n = A.shape[0]
-    rows = np.repeat(np.arange(n, dtype=np.int64), np.diff(A.indptr))
+    rows = _csr_rows(A)
     keys = rows * n + A.indices
     tkeys = A.indices.astype(np.int64) * n + rows
     pos = np.minimum(np.searchsorted(keys, tkeys), keys.size - 1)
@@ -710,9 +715,7 @@ def _side_by_side(b: _Block, A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matri
     if not (hit is not None and hit[0] is A.indices and hit[1] is A.indptr and hit[2] is B.indices
             and hit[3] is B.indptr):
         n = A.shape[0]
-        ra = np.repeat(np.arange(n), np.diff(A.indptr))
-        rb = np.repeat(np.arange(n), np.diff(B.indptr))
-        rows = np.concatenate([ra, rb])
+        rows = np.concatenate([_csr_rows(A), _csr_rows(B)])
         order = np.argsort(rows, kind="stable")          # row by row: A's columns, then B's (shifted)
         cols = np.concatenate([A.indices, B.indices + A.shape[1]])[order]
         indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=n))]).astype(A.indptr.dtype)
@@ -726,7 +729,7 @@ def _tridiagonal(b: _Block) -> bool:
     """Whether the block's pattern couples consecutive DOFs only (a chain), cached on the block."""
     if b.tridiagonal is None:
         P = b.pattern
-        rows = np.repeat(np.arange(P.shape[0]), np.diff(P.indptr))
+        rows = _csr_rows(P)
         b.tridiagonal = bool(P.shape[0] > 1 and np.all(np.abs(rows - P.indices) <= 1))
     return b.tridiagonal
 
@@ -793,8 +796,7 @@ def _data_on(lay: BandedLU, A: sp.spmatrix) -> np.ndarray:
     else:
         n = lay.n
         pkeys = lay._rows.astype(np.int64) * n + lay._cols
-        ar = np.repeat(np.arange(n), np.diff(A.indptr))
-        akeys = ar.astype(np.int64) * n + A.indices
+        akeys = _csr_rows(A) * n + A.indices
         pos = np.searchsorted(pkeys, akeys)
         ok = (pos < pkeys.size) & (pkeys[np.minimum(pos, pkeys.size - 1)] == akeys)
         if len(lay.data_maps) > 16:

@@ -345,9 +345,11 @@ def _check_mass(system: LinearSystem, M) -> None:
 
 
 def _shifted_solver(K, M) -> ShiftedSolver | None:
+    """The ShiftedSolver of (K, M), or None where the seeded solver would fail on it too (it then
+    builds it again, fails the same way and hands over to Lanczos, as without this)."""
     try:
         return ShiftedSolver(K, M)
-    except SolverError:
+    except (SolverError, ValueError, np.linalg.LinAlgError):
         return None
 
 
@@ -362,8 +364,8 @@ def _check_stiffness(system: LinearSystem, K, M, zero_level: float, lam_max: flo
     if counter is not None:
         try:
             count = counter.inertia(-zero_level)
-        except SolverError:
-            count = None
+        except (SolverError, ValueError, np.linalg.LinAlgError):
+            count = None                  # no condensed count: SuperLU's below
     if count is None:
         count = _negative_count(K + zero_level * M)
     if not count:

@@ -87,7 +87,7 @@ def check_document(doc, kind: str) -> None:
             check_count("[simulation]", "dt", t / sim.dt, MAX_TIME_STEPS, "steps (t_end / dt)", sim.dt)
         if sim.samples is not None:
             check_count("[simulation]", "samples", sim.samples, MAX_OUTPUT_SAMPLES, "output samples")
-        if getattr(sim, "max_events", None) is not None:
+        if sim.max_events is not None:
             # every event records the states before and after it, and an event record: a run that
             # used its whole allowance would hold 2 max_events samples (measured: 1e8 allowed
             # events filled 23 GB within minutes, seed 000 at ~40 000 events/s)
