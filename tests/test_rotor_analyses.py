@@ -10,7 +10,8 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.linear.complex_modal import BandedLU, complex_modal_analysis
+from discrete.linalg.banded import BandedLU
+from discrete.linear.complex_modal import complex_modal_analysis
 from discrete.linear_system import LinearSystem
 from fem.rotor import (Bearing, Disc, Probe, Rotor, ShaftSegment, Support, Unbalance, assemble_rotor, campbell,
                        critical_speed_map, rotor_modes, rpm, stability_threshold, static_deflection,

@@ -10,7 +10,7 @@ synchronous, q = Re(Q e^{i Omega t}) with
 One sparse direct solve per speed, never an inverse: only the independent block of the DOF
 graph that the unbalances load is solved (a rotor's lateral DOFs), in the reverse
 Cuthill-McKee band order, and all speeds of a chunk are factorised by one LAPACK ``zgbtrf`` call
-on the band matrices stacked along the diagonal (:class:`discrete.linear.complex_modal.BandedLU`).
+on the band matrices stacked along the diagonal (:class:`discrete.linalg.banded.BandedLU`).
 
 Peaks of a probe's amplitude are refined by a bounded scalar maximisation and the half-power
 speeds N1 < Nc < N2 (amplitude peak / sqrt 2) by Brent's method; amplification factor
@@ -28,7 +28,7 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.sparse.csgraph import connected_components
 
 from discrete.errors import ModelError
-from discrete.linear.complex_modal import BandedLU
+from discrete.linalg.banded import BandedLU
 
 from .assembly import RotorSystem
 from .model import Unbalance
