@@ -90,6 +90,10 @@ class BandedLU:
         q = bands.shape[0]
         cplx = np.iscomplexobj(bands)
         ab = bands.reshape(q * self.n, self.ldab).T          # Fortran-ordered view, no copy
+        return self._getrf(ab, q, cplx)
+
+    def _getrf(self, ab: np.ndarray, q: int, cplx: bool) -> "BandFactor":
+        """LAPACK ``?gbtrf`` in place on the Fortran-ordered band array ``ab`` of q matrices."""
         getrf = lapack.zgbtrf if cplx else lapack.dgbtrf
         lu, piv, info = getrf(ab, self.kl, self.ku, overwrite_ab=True)
         if info > 0:
@@ -119,12 +123,7 @@ class BandedLU:
         ab = np.zeros((self.ldab, q * n), dtype=complex if cplx else float, order="F")
         flat = (self._band_col[None, :] + (np.arange(q) * n)[:, None]) * self.ldab + self._band_row[None, :]
         ab.T.reshape(-1)[flat.ravel()] = data.ravel()
-        getrf = lapack.zgbtrf if cplx else lapack.dgbtrf
-        lu, piv, info = getrf(ab, self.kl, self.ku, overwrite_ab=True)
-        if info > 0:
-            raise SolverError(f"singular matrix in a banded LU (zero pivot at row {info}): the system is "
-                              "singular at this shift or frequency")
-        return BandFactor(self, lu, piv, None, q, cplx)
+        return self._getrf(ab, q, cplx)
 
 
 @dataclass
