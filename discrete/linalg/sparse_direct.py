@@ -55,6 +55,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ModelError, SolverError
+from .banded import BandedLU, band_diagonal
 
 #: smallest matrix (rows) factorised by the fast library under ``solver="auto"``.  Below it a
 #: modal solve takes seconds either way, and every model of the validation catalogue stays
@@ -173,8 +174,6 @@ BANDED_MAX_WIDTH = 32
 def _banded(A) -> Factorisation | None:
     """The banded LU of ``A`` (:class:`discrete.linalg.banded.BandedLU`), or None when its band is
     wider than :data:`BANDED_MAX_WIDTH` after reverse Cuthill-McKee."""
-    from .banded import BandedLU, band_diagonal
-
     A = sp.csr_matrix(A)
     A.sum_duplicates()
     A.sort_indices()
