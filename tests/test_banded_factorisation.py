@@ -124,3 +124,22 @@ def test_stiffness_check_still_refuses_a_negative_spring_at_large_size():
     bad = replace(system, K=K.tocsr())
     with pytest.raises(ModelError, match="eigenvalue of"):
         modal_analysis(bad, 4, dense_max=0)
+
+
+def test_one_ordering_per_pattern_and_fat_rows_rejected_before_ordering(monkeypatch):
+    from discrete.linalg import banded
+
+    system = _shaft("shaft", 2000)                       # P2: natural band 1001, reverse Cuthill-McKee 2
+    K, M = system.free_block(system.K), system.free_block(system.M)
+    built = []
+    real = banded.BandedLU.__init__
+    monkeypatch.setattr(banded.BandedLU, "__init__", lambda self, P: (built.append(1), real(self, P))[1])
+    monkeypatch.setattr(banded, "_LAYOUTS", [])
+    lay = banded.narrow_layout(banded._canonical(K), 32)
+    assert lay is not None and lay.bandwidth == 2
+    assert banded.narrow_layout(banded._canonical((K + 1e-9 * M).tocsr()), 32) is lay     # same pattern
+    modal_analysis(system, 4, dense_max=0)               # mass check, stiffness check, factorisation
+    assert len(built) == 1
+    fat = sp.random(1200, 1200, density=0.06, random_state=6, format="csr") + sp.identity(1200, format="csr")
+    assert int(np.diff(fat.indptr).max()) > 65
+    assert banded.narrow_layout(banded._canonical(fat), 32) is None and len(built) == 1

@@ -55,7 +55,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..errors import ModelError, SolverError
-from .banded import BandedLU, band_diagonal
+from .banded import _canonical, band_diagonal, narrow_layout
 
 #: smallest matrix (rows) factorised by the fast library under ``solver="auto"``.  Below it a
 #: modal solve takes seconds either way, and every model of the validation catalogue stays
@@ -126,12 +126,19 @@ def available_solvers() -> list[str]:
     return (["pardiso"] if _mkl() is not None else []) + ["superlu"]
 
 
-def choose(n: int, solver: str = "auto") -> str:
-    """The library ``factorize`` uses for an n x n matrix: "pardiso" or "superlu"."""
+def _requested(solver: str) -> str:
+    """``solver`` as asked for: an explicit name, else the innermost :func:`preferred_solver`, else
+    the environment's :data:`ENV`, else "auto"."""
     _check_name(solver, "solver")
     if solver == "auto":
         solver = _preferred[-1] if _preferred else os.environ.get(ENV, "auto")
         _check_name(solver, ENV)
+    return solver
+
+
+def choose(n: int, solver: str = "auto") -> str:
+    """The library ``factorize`` uses for an n x n matrix: "pardiso" or "superlu"."""
+    solver = _requested(solver)
     if solver == "auto":
         solver = "pardiso" if n >= AUTO_MIN_SIZE and _mkl() is not None else "superlu"
     elif solver == "pardiso" and _mkl() is None:
@@ -152,8 +159,7 @@ def factorize(A: sp.spmatrix, solver: str = "auto") -> Factorisation:
             return _pardiso(A)
         except _Rejected as why:
             return _superlu(A, notes=[f"MKL PARDISO not used: {why}; SuperLU instead"])
-    requested = solver if solver != "auto" else (_preferred[-1] if _preferred else os.environ.get(ENV, "auto"))
-    if requested == "auto" and n >= BANDED_MIN_SIZE:
+    if _requested(solver) == "auto" and n >= BANDED_MIN_SIZE:
         banded = _banded(A)
         if banded is not None:
             return banded
@@ -174,11 +180,9 @@ BANDED_MAX_WIDTH = 32
 def _banded(A) -> Factorisation | None:
     """The banded LU of ``A`` (:class:`discrete.linalg.banded.BandedLU`), or None when its band is
     wider than :data:`BANDED_MAX_WIDTH` after reverse Cuthill-McKee."""
-    A = sp.csr_matrix(A)
-    A.sum_duplicates()
-    A.sort_indices()
-    lay = BandedLU(A)
-    if not lay.banded or lay.bandwidth > BANDED_MAX_WIDTH:
+    A = _canonical(A)
+    lay = narrow_layout(A, BANDED_MAX_WIDTH)
+    if lay is None:
         return None
     try:
         fac = lay.factor(A.data)

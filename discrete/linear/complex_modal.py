@@ -58,7 +58,7 @@ from scipy.sparse.csgraph import connected_components
 
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
-from ..linalg.banded import BandedLU, _csr_rows, band_diagonal as _band_diagonal
+from ..linalg.banded import BandedLU, _canonical, _csr_rows, band_diagonal as _band_diagonal
 from ..linalg.blas import single_threaded_blas
 from ..linalg.shifted import ShiftedSolver, sturm_count
 
@@ -146,15 +146,6 @@ def _norm1(A: sp.spmatrix | None) -> float:
         return 0.0
     A = A if sp.isspmatrix_csr(A) else sp.csr_matrix(A)
     return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
-
-
-def _canonical(A: sp.spmatrix) -> sp.csr_matrix:
-    """A as CSR with sorted, unique indices (A itself when it already is)."""
-    A = A if sp.isspmatrix_csr(A) else sp.csr_matrix(A)
-    if not A.has_canonical_format:
-        A = A.copy()
-        A.sum_duplicates()
-    return A
 
 
 def _same_pattern(a: sp.csr_matrix, b: sp.csr_matrix) -> bool:
