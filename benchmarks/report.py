@@ -55,7 +55,7 @@ SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("sweep.py", ["--frequencies", "10", "--warm-cluster"], [], True),
     ("afc.py", [], [], True),
     ("afc_hybrid.py", [], [], False),
-    ("solid.py", ["--paths", "today", "auto"], [], False),
+    ("solid.py", ["--paths", "release", "auto"], [], False),
     ("rotor.py", ["--quick"], [], False),
 ]
 
@@ -173,8 +173,12 @@ def parse_afc_hybrid(text: str) -> list[dict]:
     return _afc_records("afc_hybrid.py", text, sections, target=None)   # issue 13: "report their ratio too"
 
 
-_SOLID_ROW = re.compile(r"^(today|superlu|auto): .*?\s" + _NUM + r"s\s+" + _NUM + r"-\s*" + _NUM + r"s\s+.*GB\s+"
+_SOLID_ROW = re.compile(r"^(release|today|superlu|auto): .*?\s" + _NUM + r"s\s+" + _NUM + r"-\s*" + _NUM + r"s\s+.*GB\s+"
                         + _NUM + r"\s+" + _NUM + r"\s*$", flags=re.M)
+
+
+_SOLID_BASELINES = {"release": "release 890424e (SuperLU)",
+                    "today": "today's code, SuperLU forced (checks included)"}
 
 
 def parse_solid(text: str) -> list[dict]:
@@ -189,8 +193,8 @@ def parse_solid(text: str) -> list[dict]:
         spread = {k: {"wall": v[:3], "runs": int(runs.group(1)) if runs else None}
                   for k, v in (("package", rp), ("baseline", rb)) if v}
         rec = common.record("solid.py", f"{what}, shift-invert Lanczos (parsed from the script's output)",
-                            f"{p} factorisation", f"{b} (SuperLU, before issue 13)" if b == "today" else b,
-                            float(m.group(3)), (">=", 3) if p == "auto" and b == "today" else None,
+                            f"{p} factorisation", _SOLID_BASELINES.get(b, b),
+                            float(m.group(3)), (">=", 3) if p == "auto" and b == "release" else None,
                             metric="speed-up (median of per-run ratios, fresh processes)",
                             accuracy="max residual / max rel. frequency change vs the baseline's first run",
                             accuracy_package=f"{rp[3]:.1e} / {rp[4]:.1e}" if rp else None,

@@ -1,17 +1,24 @@
 """3D solid shaft: lowest 10 modes of a cantilever with >= 100 000 DOFs (27-node hexahedra).
 
 Times the package's sparse shift-invert Lanczos (``discrete.linear.modal.modal_analysis``: one
-factorisation of K, ARPACK) with three factorisations, in the same run:
+factorisation of K, ARPACK, and the definiteness checks of M and K) against the release the issue
+was filed against, in the same run:
 
-* ``today``: the code before issue 13 -- SuperLU's LU of K and, at once, its pivot ratio (which
-  copies U: 2-3 s at 105k DOFs); reproduced by forcing SuperLU and asking for the ratio eagerly;
+* ``release``: commit 890424e itself (SuperLU's LU of K with its pivot ratio, ARPACK; no
+  definiteness checks yet), exported read-only with ``git archive`` and run in its own process,
+  which builds the model with that release's code (build not timed);
+* ``today``: this checkout forced to SuperLU with the pivot ratio asked at once -- the old
+  reconstruction of the release, kept for comparison; it also runs the checks added since
+  (issue 16: SuperLU LDL^T counts of M and of K + z M), so it is 2x slower than the release
+  and no longer a fair baseline;
 * ``superlu``: today's fallback when MKL is not installed (the ratio only where it is used);
-* ``auto``: what ``modal_analysis`` chooses by itself (MKL PARDISO's LDL^T above 20 000 DOFs when
+* ``auto``: what ``modal_analysis`` chooses by itself (MKL PARDISO from 30 000 DOFs when
   ``pypardiso`` is installed; ``discrete.linalg.sparse_direct``).
 
-The model is built once and handed to a fresh process per run (``spawn``), so each timing starts
-cold like a command-line call and each peak memory is that run's own; the paths alternate run by
-run so that load from other processes hits all of them alike.  Printed: median and spread of the
+The model is built once and handed to a fresh process per run (``spawn``; the release builds its
+own), so each timing starts cold like a command-line call and each peak memory is that run's own
+(the release's includes its build); the paths alternate run by run so that load from other
+processes hits all of them alike.  Printed: median and spread of the
 runs, the median of the per-run ratios, the frequencies' agreement, residuals, the factorisation
 and Lanczos shares, peak resident memory, and the BLAS/LAPACK libraries in use (threadpoolctl).
 
@@ -24,6 +31,7 @@ size that does not fit fails alone instead of exhausting the machine).
 iterative alternative to a factorisation (176 s against 18 s before issue 13).
 
     python benchmarks/solid.py [--axial 120] [--n-quarter 3] [--modes 10] [--runs 5] [--amg]
+                               [--paths release superlu auto] [--commit 890424e]
     python benchmarks/solid.py --growth [--limit-gib 16] [--max-dofs N] [--sizes 240x6 ...]
 """
 from __future__ import annotations
@@ -44,9 +52,38 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-PATHS = {"today": "before issue 13 (SuperLU)",
+PATHS = {"release": "release 890424e (SuperLU)",
+         "today": "SuperLU + eager ratio, today's checks",
          "superlu": "fallback without MKL",
          "auto": "automatic choice"}
+PRE_ISSUE = "890424e"
+
+# the release's own build and modal solve (its API: fem.solid, fem.modal.modal_analysis)
+_RELEASE = '''
+import resource
+from fem.solid import ShaftMeshSpec, build_solid
+from validation.builders import uniform
+from fem.modal import modal_analysis
+SOLID = build_solid(uniform("bending", 1.0, {axial}, d=0.05, supports=[(0.0, "clamped")]),
+                    ShaftMeshSpec(n_quarter={n_quarter}))
+def run():
+    res = modal_analysis(SOLID.system, {modes})
+    return {{"f": res.frequencies_hz.tolist(), "residual": float(res.residuals.max()),
+            "reliable": bool(res.reliable.all()), "n": int(SOLID.system.n_free),
+            "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}}
+'''
+
+
+def _release_once(tree, args) -> dict:
+    """One modal solve by the release in a fresh process of its own tree (build excluded)."""
+    import common
+
+    setup = _RELEASE.format(axial=args.axial, n_quarter=args.n_quarter, modes=args.modes)
+    with common.Worker(tree, setup, label=f"release {args.commit}", timeout=3600) as w:
+        m = w()
+    out = dict(m.value)
+    out.update(time=m.wall, factor=float("nan"), solver="SuperLU LU (release)", blas="(release process)")
+    return out
 
 
 def _build(axial, n_quarter):
@@ -84,9 +121,9 @@ def _solve_once(path, system_file, k, q):
     factor_time = [0.0]
     inner = modal._factor
 
-    def timed_factor(A):
+    def timed_factor(A, **kw):
         t0 = time.perf_counter()
-        f = inner(A)
+        f = inner(A, **kw)
         if path == "today" and f is not None:
             f.pivot_ratio                       # the old _factor computed it for every matrix
         factor_time[0] += time.perf_counter() - t0
@@ -131,17 +168,24 @@ def compare(args) -> int:
             pickle.dump(solid.system, fh, protocol=pickle.HIGHEST_PROTOCOL)
         del solid
         runs = {p: [] for p in args.paths}
+        tree = None
+        if "release" in args.paths:
+            import common
+
+            tree = common.old_release(args.commit)
         for r in range(args.runs):
             for p in args.paths:
-                runs[p].append(_spawn(_solve_once, p, system_file, args.modes))
+                runs[p].append(_release_once(tree, args) if p == "release" else
+                               _spawn(_solve_once, p, system_file, args.modes))
+                if p == "release" and runs[p][-1]["n"] != n:
+                    raise RuntimeError(f"the release built {runs[p][-1]['n']} free DOFs, this checkout {n}")
             print(f"  run {r + 1}/{args.runs}: " + ", ".join(f"{p} {runs[p][-1]['time']:.1f} s" for p in args.paths),
                   flush=True)
-    base = "today" if "today" in runs else args.paths[0]
+    base = next((b for b in ("release", "today") if b in runs), args.paths[0])
     f_base = np.array(runs[base][0]["f"])
-    print(f"\nBLAS/LAPACK in use ({base} process): {runs[base][0]['blas']}")
-    last = args.paths[-1]
-    if last != base:
-        print(f"BLAS/LAPACK in use ({last} process): {runs[last][0]['blas']}")
+    for p in args.paths:
+        if p != "release":
+            print(f"\nBLAS/LAPACK in use ({p} process): {runs[p][0]['blas']}")
     print(f"\n{'path':<36} {'factorisation':<18} {'median':>8} {'min-max':>13} {'factorise':>9} "
           f"{'Lanczos+':>9} {'peak RSS':>9} {'max resid.':>10} {'max |df/f|':>10}")
     for p in args.paths:
@@ -150,8 +194,9 @@ def compare(args) -> int:
         fac = statistics.median(x["factor"] for x in rs)
         med = statistics.median(ts)
         diff = max(np.max(np.abs(np.array(x["f"]) / f_base - 1)) for x in rs)
+        parts = f"{'-':>9} {'-':>9}" if np.isnan(fac) else f"{fac:8.2f}s {med - fac:8.2f}s"
         print(f"{p + ': ' + PATHS[p]:<36} {rs[0]['solver']:<18} {med:7.2f}s {min(ts):6.2f}-{max(ts):5.2f}s "
-              f"{fac:8.2f}s {med - fac:8.2f}s {max(x['rss_mb'] for x in rs) / 1024:7.2f}GB "
+              f"{parts} {max(x['rss_mb'] for x in rs) / 1024:7.2f}GB "
               f"{max(x['residual'] for x in rs):10.1e} {diff:10.1e}")
     print(f"(median and spread of {args.runs} runs; 'Lanczos+' = ARPACK iterations, residuals and mode "
           f"checks; max |df/f| against the first '{base}' run, all {args.modes} modes; load average "
@@ -270,7 +315,8 @@ def main(argv=None) -> int:
     ap.add_argument("--n-quarter", type=int, default=3, help="divisions of a quarter circle")
     ap.add_argument("--modes", type=int, default=10)
     ap.add_argument("--runs", type=int, default=5, help="runs of each path (median and spread)")
-    ap.add_argument("--paths", nargs="+", default=list(PATHS), choices=list(PATHS))
+    ap.add_argument("--paths", nargs="+", default=["release", "superlu", "auto"], choices=list(PATHS))
+    ap.add_argument("--commit", default=PRE_ISSUE, help="the release to compare against (git commit)")
     ap.add_argument("--amg", action="store_true", help="also one run of LOBPCG + smoothed-aggregation AMG (pyamg)")
     ap.add_argument("--growth", action="store_true", help="growth table instead of the comparison")
     ap.add_argument("--limit-gib", type=float, default=16.0, help="memory limit of the growth table")

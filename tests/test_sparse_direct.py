@@ -90,6 +90,24 @@ def test_pardiso_indefinite_shift_inertia_and_solution(between):
 
 
 @needs_pardiso
+def test_definite_hint_uses_cholesky_and_falls_back_to_ldlt():
+    """``definite=True``: PARDISO's Cholesky on a positive definite matrix (inertia (n, 0), the
+    same solution as SuperLU's, the same pivots as the LDL^T); on an indefinite one its failure
+    hands the matrix to the LDL^T, whose inertia counts the negative eigenvalues."""
+    K, M = _pair(6)
+    b = np.random.default_rng(4).standard_normal(K.shape[0])
+    chol = sd.factorize(K, solver="pardiso", definite=True)
+    ldlt = sd.factorize(K, solver="pardiso")
+    assert chol.name == "MKL PARDISO LL^T" and chol.inertia == (K.shape[0], 0)
+    assert np.allclose(chol.solve(b), sd.factorize(K, solver="superlu").solve(b), rtol=1e-9, atol=0)
+    assert np.isclose(chol.pivot_ratio, ldlt.pivot_ratio, rtol=1e-8)
+    lam = np.sort(sp.linalg.eigsh(K, k=5, M=M, sigma=0.0, return_eigenvectors=False))
+    A = (K - 0.5 * (lam[2] + lam[3]) * M).tocsr()
+    indefinite = sd.factorize(A, solver="pardiso", definite=True)
+    assert indefinite.name == "MKL PARDISO LDL^T" and indefinite.inertia == (A.shape[0] - 3, 3)
+
+
+@needs_pardiso
 def test_nearly_singular_matrix_goes_to_superlu_with_a_note():
     """A free-free Laplacian is singular (constant null vector): PARDISO perturbs the last pivot,
     that factorisation is dropped, and SuperLU answers (exactly singular) or is used with a note."""
@@ -178,7 +196,7 @@ def test_modal_analysis_with_pardiso_agrees_with_superlu():
     with sd.preferred_solver("pardiso"):
         fast = modal_analysis(system, 6)
         shifted = modal_analysis(system, 4, shift=sigma)
-    assert fast.linear_solver == "MKL PARDISO LDL^T" and "MKL PARDISO" in fast.method
+    assert fast.linear_solver == "MKL PARDISO LL^T" and "MKL PARDISO" in fast.method   # K definite: Cholesky
     assert np.allclose(fast.eigenvalues, ref.eigenvalues[:6], rtol=1e-10)
     assert shifted.linear_solver == "MKL PARDISO LDL^T"          # indefinite K - sigma M
     nearest = np.sort(ref.eigenvalues[np.argsort(np.abs(ref.eigenvalues - sigma))[:4]])
@@ -198,6 +216,6 @@ def test_solid_shaft_above_threshold_uses_pardiso():
     fast = modal_analysis(solid.system, 6)
     with sd.preferred_solver("superlu"):
         ref = modal_analysis(solid.system, 6)
-    assert fast.linear_solver == "MKL PARDISO LDL^T" and ref.linear_solver == "SuperLU LU"
+    assert fast.linear_solver == "MKL PARDISO LL^T" and ref.linear_solver == "SuperLU LU"
     assert np.allclose(fast.frequencies_hz, ref.frequencies_hz, rtol=1e-9)
     assert fast.reliable.all()

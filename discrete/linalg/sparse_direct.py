@@ -37,6 +37,12 @@ below ``sigma``).  Where a pivot is tiny PARDISO does not stop but replaces it b
 away and SuperLU (threshold partial pivoting) used instead, with a note saying so.  Only the
 upper triangle of ``A`` is read: ``A`` must be symmetric.
 
+A caller that expects a positive definite matrix (``factorize(K, definite=True)``: the stiffness
+of a supported structure at the default shift) gets PARDISO's Cholesky (``mtype = 2``) first: no
+pivot search, 1.15 s instead of 1.7 s for the numerical factorisation of the 105k-DOF solid and
+slightly faster solves (measured).  Its success proves the matrix positive definite (inertia
+(n, 0)); a non-positive pivot (PARDISO error -4) sends the matrix to the indefinite LDL^T above.
+
 pypardiso locates MKL's runtime library (pip wheel, conda or system); its own ``solve`` re-checks
 the whole matrix and copies its index arrays on every call (18 ms here, a third of a solve), so
 the factorisation calls MKL's documented ``pardiso`` entry point through ctypes with the arrays
@@ -78,13 +84,16 @@ class Factorisation:
 
     ``solver``: the library ("SuperLU" or "MKL PARDISO"); ``kind``: "LU" or "LDL^T";
     ``inertia``: (positive, negative) pivots where the library counts them, else None;
-    ``notes``: why a faster library was not used, if it was tried."""
+    ``notes``: why a faster library was not used, if it was tried; ``factor_nnz``: the factor's
+    stored entries and ``ordering``: its fill-reducing order (row ``ordering[k]`` of A eliminated
+    k-th), where PARDISO reports them."""
 
-    def __init__(self, solver, kind, n, solve, pivots, inertia=None, notes=()):
+    def __init__(self, solver, kind, n, solve, pivots, inertia=None, notes=(), factor_nnz=None, ordering=None):
         self.solver, self.kind, self.n = solver, kind, n
         self._solve, self._pivots = solve, pivots
         self.inertia = inertia
         self.notes = list(notes)
+        self.factor_nnz, self.ordering = factor_nnz, ordering
 
     @property
     def name(self) -> str:
@@ -147,8 +156,12 @@ def choose(n: int, solver: str = "auto") -> str:
     return solver
 
 
-def factorize(A: sp.spmatrix, solver: str = "auto") -> Factorisation:
-    """Factorise the symmetric sparse matrix ``A`` (see the module notes for the choice).
+def factorize(A: sp.spmatrix, solver: str = "auto", definite: bool = False, ordering=None,
+              keep_ordering: bool = False) -> Factorisation:
+    """Factorise the symmetric sparse matrix ``A`` (see the module notes for the choice);
+    ``definite``: A is expected to be positive definite (PARDISO tries its Cholesky first).
+    PARDISO only: ``ordering``, a fill-reducing order to use instead of METIS's (row
+    ``ordering[k]`` eliminated k-th); ``keep_ordering``: report METIS's in ``.ordering``.
 
     Raises :class:`SingularMatrixError` if ``A`` is exactly singular, :class:`SolverError` if
     MKL PARDISO runs out of memory (SuperLU would need more)."""
@@ -156,7 +169,7 @@ def factorize(A: sp.spmatrix, solver: str = "auto") -> Factorisation:
     choice = choose(n, solver)
     if choice == "pardiso":
         try:
-            return _pardiso(A)
+            return _pardiso(A, definite, ordering, keep_ordering)
         except _Rejected as why:
             return _superlu(A, notes=[f"MKL PARDISO not used: {why}; SuperLU instead"])
     if _requested(solver) == "auto" and n >= BANDED_MIN_SIZE:
@@ -262,10 +275,11 @@ def _upper_csr(A):
 class _PardisoHandle:
     """One PARDISO factorisation (its internal handle ``pt`` and the arrays it refers to)."""
 
-    def __init__(self, A):
+    def __init__(self, A, mtype: int = MTYPE, csr=None, ordering=None, keep_ordering: bool = False):
         self.fn, self.getdiag = _mkl()
         self.n = n = A.shape[0]
-        self.ia, self.ja, self.a = _upper_csr(A)
+        self.mtype = mtype
+        self.ia, self.ja, self.a = csr if csr is not None else _upper_csr(A)
         self.pt = np.zeros(64, dtype=np.int64)
         self.iparm = ip = np.zeros(64, dtype=np.int32)
         ip[0] = 1           # these values, not the defaults
@@ -276,21 +290,31 @@ class _PardisoHandle:
         ip[20] = 1          # Bunch-Kaufman 1x1 and 2x2 pivots
         ip[34] = 1          # zero-based indices
         ip[55] = 1          # keep the pivots for pardiso_getdiag
+        ip[17] = -1         # report the factor's nonzeros
+        self.perm = None
+        if ordering is not None or keep_ordering:
+            self.perm = np.zeros(n, dtype=np.int32)
+            if ordering is not None:
+                self.perm[:] = ordering
+            ip[4] = 1 if ordering is not None else 2       # use this order / report METIS's
         self._call(12, np.zeros(n), np.zeros(n), 1)              # analysis + numerical factorisation
-        weakref.finalize(self, _release, self.fn, self.pt, self.iparm)
+        self.factor_nnz = int(ip[17])
+        weakref.finalize(self, _release, self.fn, self.pt, self.iparm, mtype)
         self.perturbed = int(ip[13])
-        self.inertia = (int(ip[21]), int(ip[22]))
+        # a Cholesky that succeeded: positive definite (PARDISO counts pivots only for mtype -2)
+        self.inertia = (n, 0) if mtype == 2 else (int(ip[21]), int(ip[22]))
 
     def _call(self, phase, b, x, nrhs):
         err = ctypes.c_int32(0)
         i32 = ctypes.c_int32
-        self.fn(_P(self.pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(MTYPE)),
+        self.fn(_P(self.pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(self.mtype)),
                 ctypes.byref(i32(phase)), ctypes.byref(i32(self.n)), _P(self.a.ctypes.data), _P(self.ia.ctypes.data),
-                _P(self.ja.ctypes.data), None, ctypes.byref(i32(nrhs)), _P(self.iparm.ctypes.data),
+                _P(self.ja.ctypes.data), None if self.perm is None else _P(self.perm.ctypes.data),
+                ctypes.byref(i32(nrhs)), _P(self.iparm.ctypes.data),
                 ctypes.byref(i32(0)), _P(b.ctypes.data), _P(x.ctypes.data), ctypes.byref(err))
         if err.value:
             if phase == 12:
-                _release(self.fn, self.pt, self.iparm)
+                _release(self.fn, self.pt, self.iparm, self.mtype)
             msg = f"MKL PARDISO error {err.value} ({_ERRORS.get(err.value, 'see the MKL manual')})"
             if err.value in (-2, -8, -9):
                 raise SolverError(f"{msg} factorising a {self.n} x {self.n} matrix with "
@@ -320,23 +344,33 @@ class _PardisoHandle:
         return df
 
 
-def _release(fn, pt, iparm):
+def _release(fn, pt, iparm, mtype=MTYPE):
     """Free MKL's memory of the factorisation ``pt`` (phase -1); idempotent."""
     if not pt.any():
         return
     err = ctypes.c_int32(0)
     i32 = ctypes.c_int32
     dummy = np.zeros(1)
-    fn(_P(pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(MTYPE)),
+    fn(_P(pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(mtype)),
        ctypes.byref(i32(-1)), ctypes.byref(i32(1)), _P(dummy.ctypes.data), None, None, None, ctypes.byref(i32(1)),
        _P(iparm.ctypes.data), ctypes.byref(i32(0)), _P(dummy.ctypes.data), _P(dummy.ctypes.data), ctypes.byref(err))
     pt[:] = 0
 
 
-def _pardiso(A) -> Factorisation:
-    h = _PardisoHandle(A)
-    if h.perturbed:
-        _release(h.fn, h.pt, h.iparm)
-        raise _Rejected(f"{h.perturbed} pivot(s) below 1e-8 ||A|| were perturbed (nearly singular or "
-                        f"strongly indefinite matrix)")
-    return Factorisation("MKL PARDISO", "LDL^T", h.n, h.solve, h.pivots, inertia=h.inertia)
+def _pardiso(A, definite: bool = False, ordering=None, keep_ordering: bool = False) -> Factorisation:
+    csr = _upper_csr(A)
+    options = {"csr": csr, "ordering": ordering, "keep_ordering": keep_ordering}
+    h, kind = None, "LDL^T"
+    if definite:
+        try:
+            h, kind = _PardisoHandle(A, mtype=2, **options), "LL^T"
+        except _Rejected:
+            pass                             # not positive definite: the indefinite LDL^T decides
+    if h is None:
+        h = _PardisoHandle(A, **options)
+        if h.perturbed:
+            _release(h.fn, h.pt, h.iparm, h.mtype)
+            raise _Rejected(f"{h.perturbed} pivot(s) below 1e-8 ||A|| were perturbed (nearly singular or "
+                            f"strongly indefinite matrix)")
+    return Factorisation("MKL PARDISO", kind, h.n, h.solve, h.pivots, inertia=h.inertia, factor_nnz=h.factor_nnz,
+                         ordering=h.perm.copy() if keep_ordering and ordering is None else None)
