@@ -18,6 +18,15 @@ at every return to it (stick, slip forward and slip backward repeat all run long
   polynomial drives) gives a finite, exact series on any step.  A mode whose balanced ``h A``
   is too non-normal for the expansion on h (terms growing above 16 before they fall) gets a
   shorter step (h halved until they do not; ``halvings`` counts it).
+
+The step, its expansion and propagator, and the work matrices are functions of the numbers in
+``A`` and ``Q_p`` alone, so they are kept in small caches keyed by those numbers
+(:func:`_step_maps`, :func:`_work_matrices`; the power forms per problem and mode,
+:func:`_power_form_of`): another run of the same model (a shooting iteration, a benchmark's
+repeated call, a sweep point that leaves the mode's matrix unchanged) finds them instead of
+recomputing eigenvalues, the expansion, a Van Loan exponential per part and the polarization.
+A key holds the matrices' bytes, so a changed model does not find a stale entry; the same numbers
+give the same arrays, bit for bit.
 """
 from __future__ import annotations
 
@@ -29,6 +38,12 @@ from ..errors import SolverError
 TAYLOR_TOL = 1e-17         # last term kept, relative to the identity term
 TAYLOR_MAX = 48            # most terms of the local expansion
 TAYLOR_GROWTH = 16.0       # largest term (1-norm, balanced) for which the expansion is used
+CACHE_SIZE = 64            # entries of each content-keyed cache (cleared when full; a T of 26 states: 0.3 MB)
+
+_RHO: dict = {}
+_STEP_MAPS: dict = {}
+_WORK: dict = {}
+_POWER: dict = {}
 
 
 class AffinePiece:
@@ -41,41 +56,70 @@ class AffinePiece:
         self.R = np.ascontiguousarray(np.vstack([self.Cg, self.Cg @ self.A]))
         self.ng = self.Cg.shape[0]
         self.nz = self.A.shape[0]
-        ev = np.linalg.eigvals(self.A)
-        rho = float(np.max(np.abs(ev))) if ev.size else 0.0
-        h = np.inf if rho == 0 else 2 * np.pi / (steps_per_period * rho)
-        if max_step:
-            h = min(h, max_step)
-        h = min(h, span)
-        T = _taylor_terms(self.A, h)
-        self.halvings = 0
-        while T is None and self.halvings < 40:       # too non-normal on h: a shorter step
-            h *= 0.5
-            self.halvings += 1
-            T = _taylor_terms(self.A, h)
-        if T is None:
+        maps = _step_maps(self.A, steps_per_period, max_step, span)
+        if maps is None:
             raise SolverError(f"no convergent local expansion of the mode {mode!r} (A not finite?)")
-        self.h, self.T = h, T
-        self.P = np.ascontiguousarray(T.sum(axis=0))   # expm(A h): the expansion at s = 1
-        Q = power_form(prob, mode, self.Fm, self.Sdm)
+        self.h, self.halvings, self.T, self.P = maps
+        Q = _power_form_of(prob, mode, self.A, self.Fm, self.Sdm)
         self.parts = list(Q)
         self.Q = np.ascontiguousarray(np.array([Q[k] for k in self.parts]) if Q else np.zeros((0, self.nz, self.nz)))
-        self.G = self._work_matrices(h)
+        self.G = _work_matrices(self.A, self.Q, self.h)
         self.work_total = np.zeros(len(self.parts))   # work of each part in this mode (the kernel adds to it)
         self.hits = np.zeros(self.ng, dtype=bool)      # the guards of the last event (set by the kernel)
 
-    def _work_matrices(self, hh: float) -> np.ndarray:
-        """G_p(hh) = int_0^hh Phi(s)^T Q_p Phi(s) ds of every part (Van Loan 1978)."""
-        n = self.nz
-        out = np.zeros_like(self.Q)
-        for k, Q in enumerate(self.Q):
-            Cm = np.zeros((2 * n, 2 * n))
-            Cm[:n, :n] = -self.A.T
-            Cm[:n, n:] = Q
-            Cm[n:, n:] = self.A
-            F = expm(Cm * hh)
-            out[k] = F[n:, n:].T @ F[:n, n:]
-        return out
+
+def _remember(cache: dict, key, value):
+    if len(cache) >= CACHE_SIZE:
+        cache.clear()
+    cache[key] = value
+    return value
+
+
+def _step_maps(A: np.ndarray, steps_per_period: int, max_step: float | None, span: float):
+    """(h, halvings, T, P) of the mode matrix A: the step h <= 2 pi / (steps_per_period rho(A))
+    (and <= max_step, span), halved while the expansion does not suit A on it; T the expansion's
+    terms, P = expm(A h) their sum.  None when no step gives a convergent expansion."""
+    data = (A.dtype.str, A.tobytes())
+    rho = _RHO.get((A.shape, data))
+    if rho is None:
+        ev = np.linalg.eigvals(A)
+        rho = _remember(_RHO, (A.shape, data), float(np.max(np.abs(ev))) if ev.size else 0.0)
+    h = np.inf if rho == 0 else 2 * np.pi / (steps_per_period * rho)
+    if max_step:
+        h = min(h, max_step)
+    h = min(h, span)
+    key = (A.shape, data, h)
+    found = _STEP_MAPS.get(key)
+    if found is not None:
+        return found
+    T = _taylor_terms(A, h)
+    halvings = 0
+    while T is None and halvings < 40:       # too non-normal on h: a shorter step
+        h *= 0.5
+        halvings += 1
+        T = _taylor_terms(A, h)
+    if T is None:
+        return None
+    P = np.ascontiguousarray(T.sum(axis=0))   # expm(A h): the expansion at s = 1
+    return _remember(_STEP_MAPS, key, (h, halvings, T, P))
+
+
+def _work_matrices(A: np.ndarray, Qs: np.ndarray, hh: float) -> np.ndarray:
+    """G_p(hh) = int_0^hh Phi(s)^T Q_p Phi(s) ds of every part (Van Loan 1978)."""
+    key = (A.shape, A.dtype.str, A.tobytes(), Qs.shape, Qs.tobytes(), hh)
+    found = _WORK.get(key)
+    if found is not None:
+        return found
+    n = A.shape[0]
+    out = np.zeros_like(Qs)
+    for k, Q in enumerate(Qs):
+        Cm = np.zeros((2 * n, 2 * n))
+        Cm[:n, :n] = -A.T
+        Cm[:n, n:] = Q
+        Cm[n:, n:] = A
+        F = expm(Cm * hh)
+        out[k] = F[n:, n:].T @ F[:n, n:]
+    return _remember(_WORK, key, out)
 
 
 def _taylor_terms(A: np.ndarray, h: float):
@@ -104,6 +148,17 @@ def _taylor_terms(A: np.ndarray, h: float):
         return None
     # back to the original coordinates: D T D^-1 (scale: powers of two, exact)
     return np.ascontiguousarray(np.array(terms) * scale[None, :, None] / scale[None, None, :])
+
+
+def _power_form_of(prob, mode, A, Fm, Sdm) -> dict:
+    """:func:`power_form`, kept per problem and mode with the mode's maps A, Fm, Sdm as part of
+    the key (a problem is not changed after it is built; its maps are checked all the same).  The
+    entry holds the problem itself, so an ``id`` is never taken for another's."""
+    key = (id(prob), mode, A.tobytes(), Fm.tobytes(), Sdm.tobytes())
+    found = _POWER.get(key)
+    if found is not None and found[0] is prob:
+        return found[1]
+    return _remember(_POWER, key, (prob, power_form(prob, mode, Fm, Sdm)))[1]
 
 
 def power_form(prob, mode, Fm, Sdm) -> dict:
