@@ -175,3 +175,19 @@ def test_node_ordering_fill_and_fallback(monkeypatch):
     tight = modal.NodeOrdering(nodes.order, expected_nnz=metis.factor_nnz // 4)     # limit below the real fill
     lu, = modal._stiffness_factor(K, None, 0, tight)
     assert calls == [True, False] and lu.factor_nnz == metis.factor_nnz
+
+
+@needs_pardiso
+def test_mkl_sparse_products_agree_with_scipy(monkeypatch):
+    """ARPACK's M products on the PARDISO path run in MKL's sparse BLAS: the same products to
+    rounding; without MKL there is no operator (the caller keeps scipy's)."""
+    from discrete.linalg import mkl_sparse
+
+    _, M = _solid_like(50)
+    X = np.random.default_rng(7).standard_normal((M.shape[0], 3))
+    op = mkl_sparse.mkl_operator(M)
+    for x in X.T:
+        ref = M @ x
+        assert np.allclose(op.matvec(x), ref, rtol=0, atol=1e-14 * np.abs(ref).max())
+    monkeypatch.setattr(mkl_sparse, "mkl_library", lambda: None)
+    assert mkl_sparse.mkl_operator(M) is None

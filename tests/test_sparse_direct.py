@@ -35,8 +35,10 @@ def _pair(n=8):
 @pytest.fixture
 def fresh_library_cache():
     sd._mkl.cache_clear()
+    sd.mkl_library.cache_clear()
     yield
     sd._mkl.cache_clear()
+    sd.mkl_library.cache_clear()
 
 
 def test_superlu_path_is_scipy_splu_bit_for_bit():

@@ -233,12 +233,20 @@ MTYPE = -2                                         # real symmetric indefinite
 
 
 @lru_cache(maxsize=1)
-def _mkl():
-    """MKL's ``pardiso`` and ``pardiso_getdiag`` entry points, or None if not installed."""
+def mkl_library():
+    """MKL's runtime library (``ctypes.CDLL``) as pypardiso locates it, or None if not installed."""
     try:
         import pypardiso
-        lib = pypardiso.PyPardisoSolver().libmkl
+        return pypardiso.PyPardisoSolver().libmkl
     except (ImportError, OSError, AttributeError):
+        return None
+
+
+@lru_cache(maxsize=1)
+def _mkl():
+    """MKL's ``pardiso`` and ``pardiso_getdiag`` entry points, or None if not installed."""
+    lib = mkl_library()
+    if lib is None:
         return None
     proto = ctypes.CFUNCTYPE(None, *([_P] * 16))
     getdiag = ctypes.CFUNCTYPE(None, _P, _P, _P, _P, _P)

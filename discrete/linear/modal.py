@@ -71,6 +71,7 @@ from ..linear_system import LinearSystem, check_finite
 
 from ..linalg.banded import positive_definite
 from ..linalg.blas import single_threaded_blas
+from ..linalg.mkl_sparse import mkl_operator
 from ..linalg.seeded import seeded_eigenpairs
 from ..linalg.shifted import ShiftedSolver, is_diagonal
 from ..linalg.sparse_direct import BANDED_MAX_WIDTH, BANDED_MIN_SIZE, SingularMatrixError, choose, factorize
@@ -613,11 +614,15 @@ def _factor(A: sp.spmatrix, definite: bool = False, ordering=None):
 
 def _eigsh(K, M, k, sigma, lu, tol=0.0):
     """ARPACK in shift-invert mode; its dense kernels are tiny (n x ncv), so the solve runs
-    with single-threaded BLAS (:mod:`discrete.linalg.blas`), except MKL's when PARDISO solves."""
+    with single-threaded BLAS (:mod:`discrete.linalg.blas`), except MKL's when PARDISO solves; M's
+    products then run in MKL's sparse BLAS as well (:mod:`discrete.linalg.mkl_sparse`)."""
     n = K.shape[0]
     op = spla.LinearOperator((n, n), matvec=lu.solve, dtype=float)
     ncv = min(n, max(2 * k + 1, 20))
-    with _warnings.catch_warnings(), single_threaded_blas(keep_mkl=lu.solver == "MKL PARDISO"):
+    pardiso = lu.solver == "MKL PARDISO"
+    if pardiso:                       # ARPACK's M products on MKL's two threads (mkl_sparse)
+        M = mkl_operator(M) or M
+    with _warnings.catch_warnings(), single_threaded_blas(keep_mkl=pardiso):
         _warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
         v0 = np.random.default_rng(12345).uniform(0.5, 1.5, n)  # fixed start: reproducible results
         return spla.eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=op, tol=tol, ncv=ncv, v0=v0)
