@@ -159,6 +159,7 @@ def compare(args) -> int:
     solid = _build(args.axial, args.n_quarter)
     tb = time.perf_counter() - t0
     n = solid.system.n_free
+    PATHS["release"] = f"release {args.commit} (SuperLU)"
     print(f"3D cantilever L = 1 m, d = 50 mm: {n} free DOFs (27-node hexahedra, n_quarter = {args.n_quarter}, "
           f"{args.axial} elements along x), lowest {args.modes} modes; build {tb:.1f} s")
     load = os.getloadavg()

@@ -65,3 +65,20 @@ def test_cache_size_is_bounded(monkeypatch):
         problem, t_end = _problem(c)
         simulate(problem, 1.0, Options())
     assert all(len(cache) <= 3 for cache in (piece._RHO, piece._STEP_MAPS, piece._WORK, piece._POWER))
+
+
+def test_power_forms_are_kept_per_problem(monkeypatch):
+    """Two problems built from the same file are separate entries of the power-form cache (its
+    key holds the problem; matrices alone do not say everything a power form depends on), and the
+    results agree to the bit."""
+    first_problem, t_end = _problem()
+    _clear()
+    first = simulate(first_problem, t_end, Options())
+    calls = []
+    inner = piece.power_form
+    monkeypatch.setattr(piece, "power_form", lambda *a: calls.append(a[1]) or inner(*a))
+    second_problem, _ = _problem()
+    second = simulate(second_problem, t_end, Options())
+    assert calls                                        # computed again for the new problem
+    for a, b in zip(_arrays(first), _arrays(second)):
+        assert np.array_equal(a, b)

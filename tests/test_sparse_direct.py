@@ -11,7 +11,7 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from discrete.errors import ModelError
+from discrete.errors import ModelError, SolverError
 from discrete.linalg import sparse_direct as sd
 from discrete.linear_system import LinearSystem
 from discrete.linear.modal import modal_analysis
@@ -120,6 +120,8 @@ def test_nearly_singular_matrix_goes_to_superlu_with_a_note():
     except sd.SingularMatrixError:
         return
     assert f.solver == "SuperLU" and "perturbed" in f.notes[0]
+    with pytest.raises(SolverError, match="perturbed"):        # PARDISO only: no SuperLU behind it
+        sd.factorize(L, solver="pardiso", fallback=False)
 
 
 @needs_pardiso

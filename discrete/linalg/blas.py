@@ -27,5 +27,5 @@ def single_threaded_blas(keep_mkl: bool = False):
     through memory twice per solve, and one thread instead of two made the solves of the
     104 400-DOF solid 0.15 s instead of 0.08 s each (measured)."""
     if keep_mkl:
-        return _controller().select(internal_api="openblas").limit(limits=1)
+        return _controller().select(internal_api=["openblas", "blis", "flexiblas"]).limit(limits=1)
     return _controller().limit(limits=1, user_api="blas")

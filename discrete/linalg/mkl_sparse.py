@@ -17,12 +17,15 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..errors import SolverError
 from .sparse_direct import mkl_library
 
 _INDEX_ZERO = 0                 # SPARSE_INDEX_BASE_ZERO
 _NON_TRANSPOSE = 10             # SPARSE_OPERATION_NON_TRANSPOSE
 _GENERAL = 20                   # SPARSE_MATRIX_TYPE_GENERAL
 _EXPECTED_CALLS = 1000          # the hint for mkl_sparse_set_mv_hint
+_STATUS = {1: "not initialized", 2: "allocation failed", 3: "invalid value", 4: "execution failed",
+           5: "internal error", 6: "not supported"}      # sparse_status_t
 
 
 class _Descr(ctypes.Structure):
@@ -60,7 +63,7 @@ class MklMatrix:
                                              self.indptr.ctypes.data, self.indptr[1:].ctypes.data,
                                              self.indices.ctypes.data, self.data.ctypes.data)
         if status:
-            raise RuntimeError(f"mkl_sparse_d_create_csr status {status}")
+            raise RuntimeError(f"mkl_sparse_d_create_csr: {_STATUS.get(status, status)}")
         weakref.finalize(self, lib.mkl_sparse_destroy, self.handle)
         lib.mkl_sparse_set_mv_hint(self.handle, _NON_TRANSPOSE, self.descr, _EXPECTED_CALLS)
         lib.mkl_sparse_optimize(self.handle)
@@ -71,19 +74,21 @@ class MklMatrix:
         status = self.lib.mkl_sparse_d_mv(_NON_TRANSPOSE, 1.0, self.handle, self.descr, x.ctypes.data, 0.0,
                                           y.ctypes.data)
         if status:
-            raise RuntimeError(f"mkl_sparse_d_mv status {status}")
+            raise SolverError(f"MKL sparse matrix-vector product failed ({_STATUS.get(status, status)}, "
+                              f"{self.shape[0]} x {self.shape[1]} matrix, {self.data.size} entries)")
         return y
 
 
 def mkl_operator(A: sp.spmatrix) -> spla.LinearOperator | None:
     """``A`` as a LinearOperator whose products run in MKL's sparse BLAS, or None when MKL is not
-    installed (or refuses the matrix): the caller then uses ``A`` itself."""
+    installed (or refuses the matrix): the caller then uses ``A`` itself.  MKL's LP64 interface
+    (32-bit indices), as for PARDISO."""
     lib = mkl_library()
     if lib is None:
         return None
     try:
         _prototypes(lib)
         mat = MklMatrix(A, lib)
-    except (AttributeError, RuntimeError, OSError):
+    except (AttributeError, RuntimeError, OSError, TypeError, ctypes.ArgumentError):
         return None
     return spla.LinearOperator(A.shape, matvec=mat.matvec, dtype=float)

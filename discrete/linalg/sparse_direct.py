@@ -82,18 +82,16 @@ class SingularMatrixError(SolverError):
 class Factorisation:
     """A factorised square matrix.  ``solve(b)`` for ``b`` of shape ``(n,)`` or ``(n, m)``.
 
-    ``solver``: the library ("SuperLU" or "MKL PARDISO"); ``kind``: "LU" or "LDL^T";
+    ``solver``: the library ("SuperLU", "MKL PARDISO" or "LAPACK"); ``kind``: "LU", "LDL^T", "LL^T"
+    or "banded LU (...)";
     ``inertia``: (positive, negative) pivots where the library counts them, else None;
-    ``notes``: why a faster library was not used, if it was tried; ``factor_nnz``: the factor's
-    stored entries and ``ordering``: its fill-reducing order (row ``ordering[k]`` of A eliminated
-    k-th), where PARDISO reports them."""
+    ``notes``: why a faster library was not used, if it was tried."""
 
-    def __init__(self, solver, kind, n, solve, pivots, inertia=None, notes=(), factor_nnz=None, ordering=None):
+    def __init__(self, solver, kind, n, solve, pivots, inertia=None, notes=()):
         self.solver, self.kind, self.n = solver, kind, n
         self._solve, self._pivots = solve, pivots
         self.inertia = inertia
         self.notes = list(notes)
-        self.factor_nnz, self.ordering = factor_nnz, ordering
 
     @property
     def name(self) -> str:
@@ -156,12 +154,12 @@ def choose(n: int, solver: str = "auto") -> str:
     return solver
 
 
-def factorize(A: sp.spmatrix, solver: str = "auto", definite: bool = False, ordering=None,
-              keep_ordering: bool = False) -> Factorisation:
+def factorize(A: sp.spmatrix, solver: str = "auto", definite: bool = False,
+              fallback: bool = True) -> Factorisation:
     """Factorise the symmetric sparse matrix ``A`` (see the module notes for the choice);
     ``definite``: A is expected to be positive definite (PARDISO tries its Cholesky first).
-    PARDISO only: ``ordering``, a fill-reducing order to use instead of METIS's (row
-    ``ordering[k]`` eliminated k-th); ``keep_ordering``: report METIS's in ``.ordering``.
+    ``fallback = False``: a factorisation PARDISO turns away raises :class:`SolverError` instead
+    of going to SuperLU (a caller that only wants PARDISO's inertia).
 
     Raises :class:`SingularMatrixError` if ``A`` is exactly singular, :class:`SolverError` if
     MKL PARDISO runs out of memory (SuperLU would need more)."""
@@ -169,8 +167,10 @@ def factorize(A: sp.spmatrix, solver: str = "auto", definite: bool = False, orde
     choice = choose(n, solver)
     if choice == "pardiso":
         try:
-            return _pardiso(A, definite, ordering, keep_ordering)
+            return _pardiso(A, definite)
         except _Rejected as why:
+            if not fallback:
+                raise SolverError(f"MKL PARDISO not used: {why}") from None
             return _superlu(A, notes=[f"MKL PARDISO not used: {why}; SuperLU instead"])
     if _requested(solver) == "auto" and n >= BANDED_MIN_SIZE:
         banded = _banded(A)
@@ -283,7 +283,7 @@ def _upper_csr(A):
 class _PardisoHandle:
     """One PARDISO factorisation (its internal handle ``pt`` and the arrays it refers to)."""
 
-    def __init__(self, A, mtype: int = MTYPE, csr=None, ordering=None, keep_ordering: bool = False):
+    def __init__(self, A, mtype: int = MTYPE, csr=None):
         self.fn, self.getdiag = _mkl()
         self.n = n = A.shape[0]
         self.mtype = mtype
@@ -298,15 +298,7 @@ class _PardisoHandle:
         ip[20] = 1          # Bunch-Kaufman 1x1 and 2x2 pivots
         ip[34] = 1          # zero-based indices
         ip[55] = 1          # keep the pivots for pardiso_getdiag
-        ip[17] = -1         # report the factor's nonzeros
-        self.perm = None
-        if ordering is not None or keep_ordering:
-            self.perm = np.zeros(n, dtype=np.int32)
-            if ordering is not None:
-                self.perm[:] = ordering
-            ip[4] = 1 if ordering is not None else 2       # use this order / report METIS's
         self._call(12, np.zeros(n), np.zeros(n), 1)              # analysis + numerical factorisation
-        self.factor_nnz = int(ip[17])
         weakref.finalize(self, _release, self.fn, self.pt, self.iparm, mtype)
         self.perturbed = int(ip[13])
         # a Cholesky that succeeded: positive definite (PARDISO counts pivots only for mtype -2)
@@ -317,8 +309,7 @@ class _PardisoHandle:
         i32 = ctypes.c_int32
         self.fn(_P(self.pt.ctypes.data), ctypes.byref(i32(1)), ctypes.byref(i32(1)), ctypes.byref(i32(self.mtype)),
                 ctypes.byref(i32(phase)), ctypes.byref(i32(self.n)), _P(self.a.ctypes.data), _P(self.ia.ctypes.data),
-                _P(self.ja.ctypes.data), None if self.perm is None else _P(self.perm.ctypes.data),
-                ctypes.byref(i32(nrhs)), _P(self.iparm.ctypes.data),
+                _P(self.ja.ctypes.data), None, ctypes.byref(i32(nrhs)), _P(self.iparm.ctypes.data),
                 ctypes.byref(i32(0)), _P(b.ctypes.data), _P(x.ctypes.data), ctypes.byref(err))
         if err.value:
             if phase == 12:
@@ -365,20 +356,18 @@ def _release(fn, pt, iparm, mtype=MTYPE):
     pt[:] = 0
 
 
-def _pardiso(A, definite: bool = False, ordering=None, keep_ordering: bool = False) -> Factorisation:
+def _pardiso(A, definite: bool = False) -> Factorisation:
     csr = _upper_csr(A)
-    options = {"csr": csr, "ordering": ordering, "keep_ordering": keep_ordering}
     h, kind = None, "LDL^T"
     if definite:
         try:
-            h, kind = _PardisoHandle(A, mtype=2, **options), "LL^T"
+            h, kind = _PardisoHandle(A, mtype=2, csr=csr), "LL^T"
         except _Rejected:
             pass                             # not positive definite: the indefinite LDL^T decides
     if h is None:
-        h = _PardisoHandle(A, **options)
+        h = _PardisoHandle(A, csr=csr)
         if h.perturbed:
             _release(h.fn, h.pt, h.iparm, h.mtype)
             raise _Rejected(f"{h.perturbed} pivot(s) below 1e-8 ||A|| were perturbed (nearly singular or "
                             f"strongly indefinite matrix)")
-    return Factorisation("MKL PARDISO", kind, h.n, h.solve, h.pivots, inertia=h.inertia, factor_nnz=h.factor_nnz,
-                         ordering=h.perm.copy() if keep_ordering and ordering is None else None)
+    return Factorisation("MKL PARDISO", kind, h.n, h.solve, h.pivots, inertia=h.inertia)

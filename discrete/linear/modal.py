@@ -39,7 +39,8 @@ free DOFs) before solving:
 * M: a negative diagonal entry is an error naming the DOF; a non-diagonal M must have no
   eigenvalue below -1e3 eps max M_ii (Sylvester count of the LDL^T pivots of that shift of M);
 * K: the number of eigenvalues below -zero_level is the number of negative pivots of the
-  symmetric LDL^T of ``K + zero_level M`` (Sylvester's law of inertia); it must be 0.  The same
+  symmetric LDL^T of ``K + zero_level M`` (Sylvester's law of inertia); it must be 0 (on a large
+  model a factorisation of K itself without a negative pivot proves it, M being >= 0).  The same
   count catches negative eigenvalues that shift-invert at sigma = 0 would never find (it returns
   the eigenvalues nearest the shift);
 * every computed eigenvalue below -zero_level is an error as well (the models above
@@ -172,7 +173,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     K = system.free_block(system.K)
     M = system.free_block(system.M)
     _check_finite_matrices(system, K, M)
-    nodes = _check_mass(system, M)
+    _check_mass(system, M)
     n_massive = int(np.count_nonzero(M.diagonal() > 0)) if is_diagonal(M) else n
     if n_modes > n_massive:
         raise ModelError("[analysis]", "modes", n_modes,
@@ -191,7 +192,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
     counter = _shifted_solver(K, M) if seeds is not None and not n_rigid else None
     # a large model on the default shift: the factorisation of K that shift-invert needs is made
     # first, and its inertia (MKL PARDISO's Cholesky or LDL^T) proves the stiffness check
-    k_factor = _stiffness_factor(K, shift, n_rigid, nodes) if seeds is None else None
+    k_factor = _stiffness_factor(K, shift, n_rigid) if seeds is None else None
     _check_stiffness(system, K, M, zero_level, lam_max, counter, k_factor)
     # Shift-invert resolves the low modes to near-relative accuracy (it iterates with K^-1,
     # whose dominant eigenvalues are the ones wanted); the dense solver's error is
@@ -332,10 +333,10 @@ def _check_finite_matrices(system: LinearSystem, K, M) -> None:
     check_finite(system.title or "modal_analysis", K=K, M=M)
 
 
-def _check_mass(system: LinearSystem, M) -> NodeOrdering | None:
+def _check_mass(system: LinearSystem, M) -> None:
     """M must be positive semi-definite (massless DOFs allowed where the mass matrix is lumped):
-    a negative diagonal entry names its DOF; a non-diagonal M is checked by a Sylvester count.
-    Returns the count's :class:`NodeOrdering` of K, when it found one."""
+    a negative diagonal entry names its DOF; a non-diagonal M is checked by a Sylvester count
+    (block by block)."""
     d = M.diagonal()
     bad = np.flatnonzero(d < 0)
     if bad.size:
@@ -344,72 +345,48 @@ def _check_mass(system: LinearSystem, M) -> NodeOrdering | None:
                          float(d[bad[0]]), "a positive semi-definite mass matrix: masses, inertias and densities >= 0 "
                          f"({bad.size} negative diagonal entr{'y' if bad.size == 1 else 'ies'})")
     if is_diagonal(M) or M.shape[0] > INERTIA_MAX:
-        return None
+        return
     level = 1e3 * EPS * float(d.max(initial=0.0))
-    count, nodes = _blockwise_negative_count(M + level * sp.identity(M.shape[0], format="csr"))
+    count = _blockwise_negative_count(M + level * sp.identity(M.shape[0], format="csr"))
     if count:
         raise ModelError(system.title or "modal_analysis", "mass matrix M", f"{count} negative eigenvalue(s)",
                          f"a positive semi-definite mass matrix (eigenvalues >= -{level:.1e}, Sylvester count of the "
                          "LDL^T pivots of M + that bound): a negative mass, inertia or density, or a sign error in M")
-    return nodes
 
 
-def _blockwise_negative_count(A: sp.spmatrix) -> tuple[int | None, "NodeOrdering | None"]:
+def _blockwise_negative_count(A: sp.spmatrix) -> int | None:
     """Sylvester count of the symmetric ``A`` block by block: the count of a matrix that
     decouples into blocks (connected components of its graph) is the sum of theirs, and equal
     blocks are factorised once.  A solid's consistent mass matrix couples no two displacement
-    components, so it is three equal blocks: at 104 400 DOFs one LDL^T of a third of the size
-    instead of the whole (4.3 s with SuperLU before, 0.9 s now).  Blocks of
-    ``sparse_direct.AUTO_MIN_SIZE`` rows and more use PARDISO's Cholesky where installed, smaller
-    ones SuperLU's symmetric mode, as before.
-
-    Also returns, when A is nothing but b >= 2 equal blocks counted by PARDISO, the
-    :class:`NodeOrdering` its METIS order of one block gives the whole (else None)."""
+    components, so it is three equal blocks: at 104 400 DOFs one factorisation of a third of the
+    size instead of the whole (4.3 s with SuperLU before, 0.9 s now).  Blocks of
+    ``sparse_direct.AUTO_MIN_SIZE`` rows and more are counted by PARDISO where installed (its
+    Cholesky, else its LDL^T), smaller ones -- and any PARDISO turns away -- by SuperLU's
+    symmetric mode.  A block without a count leaves the total a lower bound: None if it is 0."""
     A = sp.csr_matrix(A)
     n_blocks, label = csgraph.connected_components(A, directed=False)
     sizes = np.bincount(label)
     if n_blocks == 1 or np.count_nonzero(sizes > 1) > MAX_BLOCKS:
-        return _negative_count(A, definite=True), None
+        return _negative_count(A, definite=True)            # (PARDISO from AUTO_MIN_SIZE rows)
     single = sizes[label] == 1                       # uncoupled DOFs: their diagonal entries
     total = int(np.count_nonzero(A.diagonal()[single] < 0))
     order = np.argsort(label, kind="stable")
     starts = np.searchsorted(label[order], np.arange(n_blocks + 1))
     seen: dict = {}
-    members = []
+    unknown = False
     for b in np.flatnonzero(sizes > 1):
         idx = order[starts[b]:starts[b + 1]]
-        members.append(idx)
         block = A[idx][:, idx]
         block.sort_indices()
         key = (block.indptr.tobytes(), block.indices.tobytes(), block.data.tobytes())
         if key not in seen:
-            seen[key] = _pardiso_count(block, keep_ordering=True) or (_negative_count(block, definite=True), (None, 0))
-        if seen[key][0] is None:
-            return None, None
-        total += seen[key][0]
-    nodes = None
-    if len(seen) == 1 and len(members) >= 2 and not single.any():
-        (_, (block_order, block_nnz)), = seen.values()
-        if block_order is not None:
-            nodes = NodeOrdering(np.stack(members, axis=1)[block_order].ravel(), len(members) ** 2 * block_nnz)
-    return total, nodes
-
-
-@dataclass
-class NodeOrdering:
-    """A fill-reducing order of K from the mass check (:func:`_blockwise_negative_count`): M made
-    of b equal blocks (a solid's displacement components) means DOF j of every block belongs to
-    one node, so METIS's order of one block, each node's b DOFs kept together, orders K on its
-    node graph -- b^2 times smaller than its DOF graph.  On the 104 400-DOF solid PARDISO's
-    analysis of K then takes 1.1 s instead of 2.0 s, for the same fill (55.3 M against 55.2 M
-    entries, measured).  ``fill_limit``: twice the fill this predicts (b^2 times the block's);
-    a factor above it is refactorised with METIS's own order (the node guess was wrong)."""
-    order: np.ndarray
-    expected_nnz: int
-
-    @property
-    def fill_limit(self) -> int:
-        return 2 * self.expected_nnz
+            counted = _pardiso_count(block)
+            seen[key] = counted if counted is not None else _negative_count(block, library=False)
+        if seen[key] is None:
+            unknown = True                # a block without a count: the total is a lower bound
+        else:
+            total += seen[key]
+    return (total or None) if unknown else total
 
 
 def _shifted_solver(K, M) -> ShiftedSolver | None:
@@ -421,25 +398,18 @@ def _shifted_solver(K, M) -> ShiftedSolver | None:
         return None
 
 
-def _stiffness_factor(K, shift, n_rigid, nodes: NodeOrdering | None = None):
+def _stiffness_factor(K, shift, n_rigid):
     """The factorisation of K that :func:`_shift_invert` makes at the default shift, made ahead of
     the stiffness check when the library counts its inertia (MKL PARDISO, from
-    ``sparse_direct.AUTO_MIN_SIZE`` DOFs), as a 1-tuple ``(factorisation or None if K is exactly
-    singular,)``; None when not made here.  K is expected positive definite (PARDISO's Cholesky
-    first); ``nodes``: the mass check's order of K's node graph, used where its fill is as
-    predicted.  (Until issue 13 this path factorised K with the LDL^T and METIS's order after a
+    ``sparse_direct.AUTO_MIN_SIZE`` DOFs), as a one-item list ``[factorisation or None if K is
+    exactly singular]`` that :func:`_shift_invert` empties (so the caller holds no large factor
+    it does not use); None when not made here.  K is expected positive definite (PARDISO's Cholesky
+    first).  (Until issue 13 this path factorised K with the LDL^T and METIS's order after a
     separate LDL^T count of K + zero_level M: the frequencies move by ~1e-10, the eigenvalues'
     own rounding level eps lam_max / lam.)"""
     if shift is not None or n_rigid not in (0, None) or choose(K.shape[0]) != "pardiso":
         return None
-    if nodes is not None:
-        try:
-            lu = _factor(K, definite=True, ordering=nodes.order)
-        except SolverError:
-            lu = None                     # e.g. out of memory with that order: METIS's below
-        if lu is not None and lu.factor_nnz is not None and lu.factor_nnz <= nodes.fill_limit:
-            return (lu,)
-    return (_factor(K, definite=True),)
+    return [_factor(K, definite=True)]
 
 
 def _check_stiffness(system: LinearSystem, K, M, zero_level: float, lam_max: float,
@@ -484,19 +454,16 @@ def _negative_eigenvalue(system: LinearSystem, value, zero_level: float, lam_max
                       "spring stiffness, or a sign error in K (or a negative mass)")
 
 
-def _pardiso_count(A: sp.spmatrix, definite: bool = True, keep_ordering: bool = False):
-    """(negative count, (METIS order or None, stored entries of the factor)) from MKL PARDISO's
-    inertia where ``factorize`` chooses it for A, else None; the order only with ``keep_ordering``."""
+def _pardiso_count(A: sp.spmatrix, definite: bool = True) -> int | None:
+    """The negative count of A from MKL PARDISO's inertia where ``factorize`` chooses it for A,
+    else None (also when PARDISO turns A away: no SuperLU factorisation is made here)."""
     if choose(A.shape[0]) != "pardiso":
         return None
     try:
-        fac = factorize(A, "pardiso", definite=definite, keep_ordering=keep_ordering)
-    except SolverError:
+        fac = factorize(A, "pardiso", definite=definite, fallback=False)
+    except SolverError:                   # turned away (perturbed pivots) or out of memory
         return None
-    if fac.inertia is None:
-        return None
-    kept = (fac.ordering, fac.factor_nnz) if fac.ordering is not None else (None, 0)
-    return int(fac.inertia[1]), kept
+    return None if fac.inertia is None else int(fac.inertia[1])
 
 
 def _negative_count(A: sp.spmatrix, library: bool = True, definite: bool = False) -> int | None:
@@ -511,8 +478,8 @@ def _negative_count(A: sp.spmatrix, library: bool = True, definite: bool = False
     if A.shape[0] >= BANDED_MIN_SIZE and positive_definite(A, BANDED_MAX_WIDTH):
         return 0                          # a narrow band: one banded Cholesky proves the count is 0
     counted = _pardiso_count(A, definite) if library else None
-    if counted:
-        return counted[0]
+    if counted is not None:
+        return counted
     try:
         lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
                        options={"SymmetricMode": True})
@@ -601,13 +568,13 @@ def _is_positive_definite(M: sp.spmatrix) -> bool:
     return bool(ev[0] > 1e-8 * ev[-1])
 
 
-def _factor(A: sp.spmatrix, definite: bool = False, ordering=None):
+def _factor(A: sp.spmatrix, definite: bool = False):
     """Sparse factorisation of the symmetric A (:mod:`discrete.linalg.sparse_direct`: MKL PARDISO's
     LDL^T -- its Cholesky first when A is expected ``definite`` -- for large matrices where
     installed, else SuperLU's LU), None if A is exactly singular.  Its ``pivot_ratio`` (smallest
     to largest pivot) is computed on first use."""
     try:
-        return factorize(A, definite=definite, ordering=ordering)
+        return factorize(A, definite=definite)
     except SingularMatrixError:
         return None
 
@@ -642,7 +609,7 @@ def _shift_invert(K, M, k, shift, lam_max, rigid_level, n_rigid, k_factor=None):
             raise SolverError(f"K - sigma M is singular at the requested shift {shift}: choose another shift")
         lam, vec = _eigsh(K, M, k, shift, lu)
         return lam, vec, shift, lu
-    lu = (k_factor[0] if k_factor else _factor(K)) if n_rigid in (0, None) else None
+    lu = (k_factor.pop() if k_factor else _factor(K)) if n_rigid in (0, None) else None
     if lu is not None and (n_rigid == 0 or lu.pivot_ratio > 1e3 * EPS):
         lam, vec = _eigsh(K, M, k, 0.0, lu)
         return lam, vec, 0.0, lu

@@ -30,6 +30,8 @@ give the same arrays, bit for bit.
 """
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 from scipy.linalg import expm, matrix_balance
 
@@ -153,12 +155,13 @@ def _taylor_terms(A: np.ndarray, h: float):
 def _power_form_of(prob, mode, A, Fm, Sdm) -> dict:
     """:func:`power_form`, kept per problem and mode with the mode's maps A, Fm, Sdm as part of
     the key (a problem is not changed after it is built; its maps are checked all the same).  The
-    entry holds the problem itself, so an ``id`` is never taken for another's."""
+    entry holds a weak reference to the problem, so an ``id`` reused by another problem is not
+    taken for the first one's and the cache keeps no problem alive."""
     key = (id(prob), mode, A.tobytes(), Fm.tobytes(), Sdm.tobytes())
     found = _POWER.get(key)
-    if found is not None and found[0] is prob:
+    if found is not None and found[0]() is prob:
         return found[1]
-    return _remember(_POWER, key, (prob, power_form(prob, mode, Fm, Sdm)))[1]
+    return _remember(_POWER, key, (weakref.ref(prob), power_form(prob, mode, Fm, Sdm)))[1]
 
 
 def power_form(prob, mode, Fm, Sdm) -> dict:
