@@ -234,10 +234,13 @@ MTYPE = -2                                         # real symmetric indefinite
 
 @lru_cache(maxsize=1)
 def mkl_library():
-    """MKL's runtime library (``ctypes.CDLL``) as pypardiso locates it, or None if not installed."""
+    """MKL's runtime library (``ctypes.CDLL``) as pypardiso locates it, or None if not installed.
+    Importing pypardiso already makes its default solver, which has found and loaded the library:
+    that one is reused (a second ``PyPardisoSolver()`` searched again, 0.18 s per process)."""
     try:
         import pypardiso
-        return pypardiso.PyPardisoSolver().libmkl
+        solver = getattr(getattr(pypardiso, "scipy_aliases", None), "pypardiso_solver", None)
+        return (solver if solver is not None else pypardiso.PyPardisoSolver()).libmkl
     except (ImportError, OSError, AttributeError):
         return None
 
@@ -291,7 +294,9 @@ class _PardisoHandle:
         self.pt = np.zeros(64, dtype=np.int64)
         self.iparm = ip = np.zeros(64, dtype=np.int32)
         ip[0] = 1           # these values, not the defaults
-        ip[1] = 2           # METIS nested dissection
+        ip[1] = 3           # METIS nested dissection, its parallel (OpenMP) version: the analysis of the
+        #                     104 400-DOF solid's K 0.2-1.0 s faster on 2 threads, the same results from run
+        #                     to run and process to process (checked bitwise)
         ip[9] = 8           # pivot perturbation 1e-8 (the default for symmetric indefinite)
         ip[10] = 0          # no scaling ...
         ip[12] = 0          # ... nor weighted matching (symmetric indefinite default off)
