@@ -163,13 +163,13 @@ class EventDrivenSolver:
     def _consistent_mode(self, t, z, mode, limits=None):
         """Release sticking frictions (|lam| above their limit) and persistent contacts (lam < 0),
         the most violated first, until the constraint forces are admissible."""
-        pc = self._pieces.get(tuple(mode))
-        if pc is not None and not pc.rows:      # no constraint in this mode: nothing to release
-            return list(mode)
         mode = list(mode)
         limits = limits or {}
         elements, ftol = self.p.elements, self._contact_ftol
         for _ in range(4 * len(mode) + 4):
+            pc = self._pieces.get(tuple(mode))
+            if pc is not None and not pc.rows:  # no constraint in this mode: nothing (more) to release
+                return mode
             F, rows = self._forces(t, z, mode)
             worst, wi = 0.0, None
             for i in rows:
@@ -181,9 +181,6 @@ class EventDrivenSolver:
             mode[wi] = elements[wi].released_mode(F[wi])
             if wi in limits:
                 limits = {i: v for i, v in limits.items() if i != wi}     # (the caller's dict stays as it was)
-            pc = self._pieces.get(tuple(mode))
-            if pc is not None and not pc.rows:  # released into a mode without constraints: consistent
-                return mode
         raise SolverError(f"could not find a consistent contact/stick mode at t = {t!r}")
 
     def initial_mode(self, t, z, pieces=()):
@@ -207,7 +204,7 @@ class EventDrivenSolver:
         return pc
 
     def _propagate_exact(self, t, z, mode, t_end, rec, acc):
-        pc = self._pieces.get(mode) or self._piece(mode, t_end - t)
+        pc = self._piece(mode, t_end - t)
         dt_out = float(self.o.output_step or 0.0)
         buf = self._buffers
         if buf is None or buf[1].shape[1] != pc.nz or (dt_out and buf[0].size < 2 * pc.h / dt_out + 16):
@@ -217,7 +214,7 @@ class EventDrivenSolver:
         first = True
         energy = self.o.energy
         hits = pc.hits
-        kernel = _KERNEL[0] if _KERNEL else _kernel()
+        kernel = _kernel()
         while True:
             z_out = np.empty(pc.nz)
             why, n, steps, t, W = kernel.advance(
