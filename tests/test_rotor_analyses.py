@@ -214,3 +214,25 @@ def test_whirl_render(tmp_path):
     png = render.render_whirl(rs, m, 1, tmp_path / "w.png")
     gif = render.render_whirl_gif(rs, m, 1, tmp_path / "w.gif", frames=4)
     assert png.stat().st_size > 10000 and gif.stat().st_size > 10000
+
+
+def test_solver_leaves_the_callers_matrices_alone():
+    """An undamped rotor at rest stores positions that are zero in M, K, C and G alike; building the
+    quadratic solver drops them from its own pattern without compacting the caller's M in place
+    (it used to: M's structure was corrupted and the solve failed with a shape error at 198
+    elements).  The eigenvalues at rest are +-i omega of (K, M): the reference is scipy's
+    shift-invert Lanczos on that symmetric pencil."""
+    rs = assemble_rotor(friswell(198, "full"))
+    sys_ = rs.system_at(0.0)
+    before = {n: getattr(sys_, n).copy() for n in "MKCG"}
+    res = complex_modal_analysis(sys_, 6, speed=0.0)
+    for n, A in before.items():
+        B = getattr(sys_, n)
+        assert np.array_equal(B.indptr, A.indptr) and np.array_equal(B.indices, A.indices)
+        assert np.array_equal(B.data, A.data)
+    f = sys_.free                   # axial and torsional motion are free: two rigid-body modes first
+    lam = np.sort(spla.eigsh(sys_.K[f][:, f].tocsc(), k=6, M=sys_.M[f][:, f].tocsc(), sigma=-1.0,
+                             return_eigenvectors=False))
+    omega = np.sort(np.abs(res.eigenvalues.imag))
+    assert np.all(omega[:2] == 0.0) and np.all(np.abs(lam[:2]) < 1e-3)
+    assert np.allclose(omega[2:], np.sqrt(lam[2:]), rtol=1e-8)

@@ -224,7 +224,8 @@ class QuadraticEigensolver:
                 groups.append((A, A.data != 0))
         if len(groups) == 1 and free.size == n_all:      # one pattern, nothing constrained: P is its non-zeros
             A, nz = groups[0]
-            P = sp.csr_matrix((nz.astype(float), A.indices, A.indptr), shape=A.shape)
+            # its own index arrays: eliminate_zeros compacts them in place, and A is the caller's M
+            P = sp.csr_matrix((nz.astype(float), A.indices.copy(), A.indptr.copy()), shape=A.shape)
             P.eliminate_zeros()
             perm = _transpose_positions(P)
             if perm is None:
