@@ -286,11 +286,11 @@ def _upper_csr(A):
 class _PardisoHandle:
     """One PARDISO factorisation (its internal handle ``pt`` and the arrays it refers to)."""
 
-    def __init__(self, A, mtype: int = MTYPE, csr=None):
+    def __init__(self, n: int, csr, mtype: int = MTYPE):
         self.fn, self.getdiag = _mkl()
-        self.n = n = A.shape[0]
+        self.n = n
         self.mtype = mtype
-        self.ia, self.ja, self.a = csr if csr is not None else _upper_csr(A)
+        self.ia, self.ja, self.a = csr                  # _upper_csr of the matrix
         self.pt = np.zeros(64, dtype=np.int64)
         self.iparm = ip = np.zeros(64, dtype=np.int32)
         ip[0] = 1           # these values, not the defaults
@@ -348,7 +348,7 @@ class _PardisoHandle:
         return df
 
 
-def _release(fn, pt, iparm, mtype=MTYPE):
+def _release(fn, pt, iparm, mtype):
     """Free MKL's memory of the factorisation ``pt`` (phase -1); idempotent."""
     if not pt.any():
         return
@@ -366,11 +366,11 @@ def _pardiso(A, definite: bool = False) -> Factorisation:
     h, kind = None, "LDL^T"
     if definite:
         try:
-            h, kind = _PardisoHandle(A, mtype=2, csr=csr), "LL^T"
+            h, kind = _PardisoHandle(A.shape[0], csr, mtype=2), "LL^T"
         except _Rejected:
             pass                             # not positive definite: the indefinite LDL^T decides
     if h is None:
-        h = _PardisoHandle(A, csr=csr)
+        h = _PardisoHandle(A.shape[0], csr)
         if h.perturbed:
             _release(h.fn, h.pt, h.iparm, h.mtype)
             raise _Rejected(f"{h.perturbed} pivot(s) below 1e-8 ||A|| were perturbed (nearly singular or "

@@ -61,6 +61,7 @@ from ..linear_system import LinearSystem
 from ..linalg.banded import BandedLU, _canonical, _csr_rows, band_diagonal as _band_diagonal
 from ..linalg.blas import single_threaded_blas
 from ..linalg.shifted import ShiftedSolver, sturm_count
+from .modal import _norm1 as _matrix_norm1
 
 EPS = np.finfo(float).eps
 #: implicit restarts of one Arnoldi run: a run converges in 1-3 (ncv ~ 2 k); one that stalls (a
@@ -142,10 +143,8 @@ class ComplexModalResult(ComplexModeFigures):
 
 # ====================================================================== solver
 def _norm1(A: sp.spmatrix | None) -> float:
-    if A is None:
-        return 0.0
-    A = A if sp.isspmatrix_csr(A) else sp.csr_matrix(A)
-    return float(np.bincount(A.indices, weights=np.abs(A.data), minlength=A.shape[1]).max()) if A.nnz else 0.0
+    """The 1-norm of A (:func:`discrete.linear.modal._norm1`), 0 for a missing matrix."""
+    return 0.0 if A is None else _matrix_norm1(A)
 
 
 def _same_pattern(a: sp.csr_matrix, b: sp.csr_matrix) -> bool:
