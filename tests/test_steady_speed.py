@@ -16,7 +16,7 @@ from threadpoolctl import threadpool_limits
 
 from discrete.linalg import expm_batch
 from discrete.steady import HBModel, ShootingModel, floquet_hb
-from discrete.steady.hb import _expm2, floquet_hb_batch
+from discrete.steady.hb import _expm2, _expm2_parts, _expm2_runs, floquet_hb_batch
 from fem.study import forced, steady_model
 from validation.analytic.steady_seed002 import K_NAT, seed002_doc
 
@@ -71,6 +71,22 @@ def test_closed_form_2x2_exponential_equals_pade():
     E = _expm2(Y)
     ref = expm_batch(Y)
     assert np.max(np.abs(E - ref) / np.maximum(np.abs(ref).max(axis=(1, 2), keepdims=True), 1e-300)) < 2e-14
+
+
+def test_exponentials_by_runs_equal_one_per_interval():
+    """Runs of equal intervals (a saturated friction law, a contact on or off) are exponentiated once:
+    bit for bit what one exponential per interval gives, a run broken by a sign of zero included."""
+    rng = np.random.default_rng(11)
+    h = np.array([0.01, 0.02, 0.5])
+    c = np.repeat(rng.normal(size=(3, 8)), rng.integers(1, 40, size=8), axis=1)[:, :64]
+    d = np.repeat(rng.normal(size=(3, 8)), rng.integers(1, 40, size=8), axis=1)[:, :64]
+    c, d = c[:, :min(c.shape[1], d.shape[1])], d[:, :min(c.shape[1], d.shape[1])]
+    d[1, 5:9] = 0.0
+    d[1, 7] = -0.0
+    hh = np.broadcast_to(h[:, None], c.shape)
+    runs = _expm2_runs(h, c, d)
+    direct = _expm2_parts(np.zeros_like(hh), hh, c, d)
+    assert all(np.array_equal(a.view(np.uint64), b.view(np.uint64)) for a, b in zip(runs, direct))
 
 
 def _floquet_reference(hb, X, w, M):

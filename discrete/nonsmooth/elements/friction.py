@@ -119,12 +119,20 @@ class Friction(Element):
 
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps):
-        """Regularised ``-a0 tanh(w / eps) - a1 w - a2 w|w| - a3 w^2|w|`` (harmonic balance)."""
+        """Regularised ``-a0 tanh(w / eps) - a1 w - a2 w|w| - a3 w^3`` (harmonic balance); a power-law
+        term whose coefficient is zero is left out (the same values, fewer array passes)."""
         w = sd - self.surface_velocity
         fk = self.kinetic
         th = np.tanh(w / eps)
-        F = -fk * th - self.viscous * w - self.quadratic * w * np.abs(w) - self.cubic * w * w * w
-        dF = -fk * (1 - th ** 2) / eps - self.viscous - 2 * self.quadratic * np.abs(w) - 3 * self.cubic * w * w
+        F = -fk * th - self.viscous * w
+        dF = -fk * (1 - th ** 2) / eps - self.viscous
+        if self.quadratic:
+            aw = np.abs(w)
+            F = F - self.quadratic * w * aw
+            dF = dF - 2 * self.quadratic * aw
+        if self.cubic:
+            F = F - self.cubic * w * w * w
+            dF = dF - 3 * self.cubic * w * w
         return F, np.zeros_like(s), dF
 
     n_memory = 1
