@@ -223,3 +223,34 @@ def test_solid_shaft_above_threshold_uses_pardiso():
     assert fast.linear_solver == "MKL PARDISO LL^T" and ref.linear_solver == "SuperLU LU"
     assert np.allclose(fast.frequencies_hz, ref.frequencies_hz, rtol=1e-9)
     assert fast.reliable.all()
+
+
+@needs_pardiso
+def test_mkl_is_found_in_the_prefix_without_a_search(monkeypatch):
+    """Where the MKL wheel installs it (sys.prefix/lib) the library is handed to pypardiso as a hint,
+    so pypardiso's recursive search of sys.prefix (0.15 s per process) does not run; the hint is
+    not left in the environment."""
+    import pypardiso.pardiso_wrapper as pw
+
+    near = sd._mkl_rt_in_prefix()
+    if near is None:
+        pytest.skip("MKL is not installed in sys.prefix/lib here")
+    monkeypatch.delenv("PYPARDISO_MKL_RT", raising=False)
+    real_glob = pw.glob.glob
+
+    def no_search(pattern, *a, **k):
+        if "**" in pattern:
+            pytest.fail("pypardiso searched sys.prefix")
+        return real_glob(pattern, *a, **k)
+
+    monkeypatch.setattr(pw.glob, "glob", no_search)
+    monkeypatch.setattr(pw, "find_library", lambda name: pytest.fail("pypardiso asked find_library"))
+    monkeypatch.delitem(sys.modules, "pypardiso", raising=False)
+    monkeypatch.delitem(sys.modules, "pypardiso.scipy_aliases", raising=False)
+    sd.mkl_library.cache_clear()
+    try:
+        lib = sd.mkl_library()
+    finally:
+        sd.mkl_library.cache_clear()
+    assert lib is not None and lib._name == near
+    assert "PYPARDISO_MKL_RT" not in __import__("os").environ
