@@ -2,14 +2,30 @@
 
 The analyses of an assembled :class:`~discrete.linear_system.LinearSystem` live in
 :mod:`discrete.linear` (fem assembles, discrete solves); their public names are re-exported here.
+They are imported on first use (``from fem import modal_analysis`` works as before), so that the
+command line's start and ``import fem.app.cli`` do not load scikit-fem and scipy up front.
 """
-from discrete.linear import (Damping, HarmonicResult, ModalResult, ReducedModel, frf, harmonic_response,
-                             modal_analysis, reduce, static_deflection)
+from importlib import import_module
 
-from .assembly import FEModel, assemble
-from .model import PointAttachment, Segment, ShaftModel, Support
-from .sections import Material, Section
+_EXPORTS = {**dict.fromkeys(["Damping", "HarmonicResult", "ModalResult", "ReducedModel", "frf",
+                             "harmonic_response", "modal_analysis", "reduce", "static_deflection"], "discrete.linear"),
+            **dict.fromkeys(["FEModel", "assemble"], "fem.assembly"),
+            **dict.fromkeys(["PointAttachment", "Segment", "ShaftModel", "Support"], "fem.model"),
+            **dict.fromkeys(["Material", "Section"], "fem.sections")}
 
 __all__ = ["FEModel", "assemble", "ShaftModel", "Segment", "Support", "PointAttachment",
            "ModalResult", "modal_analysis", "Damping", "HarmonicResult", "harmonic_response", "frf",
            "ReducedModel", "reduce", "static_deflection", "Material", "Section"]
+
+
+def __getattr__(name):
+    where = _EXPORTS.get(name)
+    if where is None:
+        raise AttributeError(f"module 'fem' has no attribute {name!r}")
+    value = getattr(import_module(where), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -15,9 +15,9 @@ from discrete.errors import ModelError
 from ..output import check_output_path, columns, contract, tables, write_json
 from ..output.jsonio import encode
 from ..study import Study
+from .exit_codes import EXIT_INTERRUPTED
 from .progress import progress_bar
 
-EXIT_INTERRUPTED = 130
 
 
 def _outputs(args, **options) -> None:
