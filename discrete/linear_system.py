@@ -58,6 +58,10 @@ class LinearSystem:
     rigid_modes: np.ndarray | None = None
     title: str = ""
     physics: str = ""
+    mass_proof: tuple | None = field(default=None, repr=False, compare=False)
+    """``(reason, M)``: why this M is positive semi-definite by construction, with the very matrix
+    object it was proven for (set by :meth:`prove_mass_semidefinite`; a system whose M is another
+    object -- replaced, rebuilt, converted -- has no proof)."""
 
     def __post_init__(self):
         where = f"LinearSystem {self.title!r}" if self.title else "LinearSystem"
@@ -97,6 +101,20 @@ class LinearSystem:
             self.rigid_modes = R.astype(float).reshape(n, -1)
 
     # ------------------------------------------------------------------ DOFs
+    def prove_mass_semidefinite(self, reason: str) -> None:
+        """Record that M, as it is now, is positive semi-definite by construction -- e.g. an FE mass
+        matrix ``sum_q rho_q dx_q phi_q phi_q^T`` with densities and quadrature weights >= 0 -- so
+        that :func:`~discrete.linear.modal.modal_analysis` need not prove it by a factorisation.
+        The assembler calls this after checking the conditions that ``reason`` states; M must not
+        be changed in place afterwards."""
+        self.mass_proof = (str(reason), self.M)
+
+    @property
+    def mass_semidefinite_reason(self) -> str | None:
+        """The reason of :meth:`prove_mass_semidefinite` while M is the matrix it was given for."""
+        proof = self.mass_proof
+        return proof[0] if proof is not None and proof[1] is self.M else None
+
     @property
     def n_dofs(self) -> int:
         return self.M.shape[0]

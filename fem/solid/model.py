@@ -167,8 +167,12 @@ def build_solid(model: ShaftModel, spec: ShaftMeshSpec | None = None) -> SolidMo
     solid = assemble_solid(mesh, np.array([_lame(m.E, m.G)[0] for m in mats])[seg],
                            np.array([_lame(m.E, m.G)[1] for m in mats])[seg],
                            np.array([m.rho for m in mats])[seg], title=model.title)
-    K, M, held = _attachments(model, solid, outer, inner)
+    proven = solid.system.mass_semidefinite_reason
+    K, M, held, masses_proven = _attachments(model, solid, outer, inner)
     solid.system = _system(solid.basis, K, M, held, model.title)
+    if proven and masses_proven is not False:
+        solid.system.prove_mass_semidefinite(proven + ("; point masses and inertias >= 0 as section integrals "
+                                                       "with facet weights >= 0" if masses_proven else ""))
     solid.model = model
     solid.length = model.length
     return solid
@@ -196,6 +200,11 @@ def assemble_solid(mesh, mu, lam, rho, title: str = "", cell_type: str = "hexahe
     M = sp.block_diag([Ms, Ms, Ms], format="csr")
     x = basis.doflocs[0]
     system = _system(basis, K, M, np.zeros(0, dtype=int), title)
+    if np.all(np.asarray(rho, float) >= 0) and np.all(basis.dx >= 0):
+        # M = sum over quadrature points of rho_q dx_q phi_q phi_q^T, dx = |det J| x weight: a sum of
+        # positive semi-definite terms (modal_analysis then skips its Sylvester count of M)
+        system.prove_mass_semidefinite(f"consistent mass of {type(elem).__name__} elements: densities >= 0 and "
+                                       "quadrature weights x |det J| >= 0")
     return SolidModel(mesh=mesh, basis=basis, system=system, length=float(x.max() - x.min()), element=type(elem).__name__,
                       cell_type=cell_type)
 
@@ -234,6 +243,7 @@ def _attachments(model, solid, outer, inner):
     xdof = np.tile(basis.doflocs[0], 3)
     comp = np.repeat(np.arange(3), Ns)
     held = []
+    masses_proven = None                 # True: every mass term added has coefficients and facet weights >= 0
     ends = np.concatenate(([0.0], np.cumsum([s.length for s in model.segments])))
 
     def section_props(x):
@@ -244,6 +254,8 @@ def _attachments(model, solid, outer, inner):
         Id = math.pi * (ro**4 - ri**4) / 4
         return math.pi * (ro**2 - ri**2), Id, 2 * Id
 
+    weights_ok = [True]
+
     def section_matrix(x, area=0.0, axial=0.0, transverse=0.0, tangential=0.0):
         """Vector matrix of int (area u.v + axial u_x v_x + transverse (u_y v_y + u_z v_z)
         + tangential (u.e_theta)(v.e_theta)) over the cross-section at x."""
@@ -251,6 +263,7 @@ def _attachments(model, solid, outer, inner):
         if facets.size == 0:
             raise ModelError("solid model", "x", x, "a position on a mesh section")
         fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=4)
+        weights_ok[0] = bool(np.all(fb.dx >= 0))
         xg = np.asarray(fb.global_coordinates())
         y, z = xg[1], xg[2]
         r2 = y * y + z * z + 1e-300
@@ -288,6 +301,7 @@ def _attachments(model, solid, outer, inner):
             M = M + section_matrix(p.x, area=p.mass / A,
                                    tangential=p.inertia / J if model.physics == "torsion" else 0.0,
                                    axial=p.inertia / Id if model.physics == "bending" else 0.0)
+            masses_proven = masses_proven is not False and p.mass >= 0 and p.inertia >= 0 and weights_ok[0]
         if p.k or p.kr:
             K = K + spring(p.x, p.k, p.kr)
-    return sp.csr_matrix(K), sp.csr_matrix(M), np.unique(np.asarray(held, dtype=int))
+    return sp.csr_matrix(K), sp.csr_matrix(M), np.unique(np.asarray(held, dtype=int)), masses_proven
