@@ -32,7 +32,7 @@ def _emit(args, command: str, study, data: dict) -> dict:
     """Encode (refusing non-finite numbers) and write the JSON document; returns it."""
     doc = encode(contract.payload(command, study, data))
     if getattr(args, "json", None):
-        write_json(args.json, doc)
+        write_json(args.json, doc, encoded=True)
     return doc
 
 

@@ -35,7 +35,7 @@ def parametric(args) -> int:
     data = contract.parametric_data(study, spec, chart)
     doc = encode(contract.payload("parametric", study, data))
     if args.json:
-        write_json(args.json, doc)
+        write_json(args.json, doc, encoded=True)
         print(f"wrote {args.json}")
     print_summary(study.title, spec, chart)
     if args.csv:

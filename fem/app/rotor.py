@@ -72,7 +72,7 @@ def _check_outputs(args, **options) -> None:
 def _emit(args, command: str, study, data: dict) -> dict:
     doc = encode(contract.payload(command, study, data))
     if getattr(args, "json", None):
-        write_json(args.json, doc)
+        write_json(args.json, doc, encoded=True)
     return doc
 
 

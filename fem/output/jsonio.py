@@ -13,8 +13,11 @@ import numpy as np
 from discrete.errors import SolverError
 
 
-def encode(obj, path: str = "$"):
-    """``obj`` as plain JSON data; raises :class:`SolverError` at the first non-finite number."""
+def encode(obj, path="$"):
+    """``obj`` as plain JSON data; raises :class:`SolverError` at the first non-finite number.
+    ``path`` names the place in error messages; it is built only then (``_where``): below the
+    top it is a chain of (parent, separator, key) tuples, cheap for the millions of numbers of a
+    long simulation's events."""
     if obj is None or isinstance(obj, (bool, str)):
         return obj
     if isinstance(obj, (np.bool_,)):
@@ -24,24 +27,36 @@ def encode(obj, path: str = "$"):
     if isinstance(obj, (float, np.floating)):
         x = float(obj)
         if not math.isfinite(x):
-            raise SolverError(f"the result is not finite at {path} ({x}): the computation lost its meaning there "
-                              "(check the model's parameters, or the solver's warnings above)")
+            raise SolverError(f"the result is not finite at {_where(path)} ({x}): the computation lost its meaning "
+                              "there (check the model's parameters, or the solver's warnings above)")
         return x
     if isinstance(obj, (complex, np.complexfloating)):
-        return {"re": encode(obj.real, path + ".re"), "im": encode(obj.imag, path + ".im")}
+        return {"re": encode(obj.real, (path, ".", "re")), "im": encode(obj.imag, (path, ".", "im"))}
     if isinstance(obj, np.ndarray):
         if obj.dtype.kind in "fc" and obj.size and not np.all(np.isfinite(obj)):
             bad = np.argwhere(~np.isfinite(obj))[0]
-            raise SolverError(f"the result is not finite at {path}[{']['.join(map(str, bad))}]: the computation lost "
-                              "its meaning there (check the model's parameters, or the solver's warnings above)")
+            raise SolverError(f"the result is not finite at {_where(path)}[{']['.join(map(str, bad))}]: the "
+                              "computation lost its meaning there (check the model's parameters, or the solver's "
+                              "warnings above)")
+        if obj.dtype.kind in "biuf":
+            return obj.tolist()              # Python bools, ints and floats, all finite: JSON as they are
         return encode(obj.tolist(), path)
     if isinstance(obj, dict):
-        return {str(k): encode(v, f"{path}.{k}") for k, v in obj.items()}
+        return {str(k): encode(v, (path, ".", k)) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [encode(v, f"{path}[{i}]") for i, v in enumerate(obj)]
+        return [encode(v, (path, "[", i)) for i, v in enumerate(obj)]
     if isinstance(obj, Path):
         return str(obj)
-    raise TypeError(f"not JSON serialisable at {path}: {type(obj).__name__}")
+    raise TypeError(f"not JSON serialisable at {_where(path)}: {type(obj).__name__}")
+
+
+def _where(path) -> str:
+    """The place ``$.a.b[3]`` of a path chain of :func:`encode`."""
+    keys = []
+    while isinstance(path, tuple):
+        path, sep, key = path
+        keys.append(f".{key}" if sep == "." else f"[{key}]")
+    return str(path) + "".join(reversed(keys))
 
 
 def check_finite(data) -> dict:
@@ -49,12 +64,14 @@ def check_finite(data) -> dict:
     return encode(data)
 
 
-def write_json(path, data) -> Path:
-    """Write ``data`` (already encoded or not) atomically to ``path``."""
+def write_json(path, data, encoded: bool = False) -> Path:
+    """Write ``data`` atomically to ``path``; ``encoded``: it is already the result of
+    :func:`encode` (not encoded twice: a long simulation's events take seconds)."""
     path = Path(path)
-    text = json.dumps(encode(data), indent=2, allow_nan=False) + "\n"
+    text = json.dumps(data if encoded else encode(data), indent=2, allow_nan=False) + "\n"
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(text)
     os.replace(tmp, path)
     return path
+
