@@ -11,7 +11,21 @@ __all__ = ["ModelError", "LinearSystem"]
 
 
 def __getattr__(name):
+    import importlib
+
     if name == "LinearSystem":
         from .linear_system import LinearSystem
+        globals()[name] = LinearSystem
         return LinearSystem
-    raise AttributeError(f"module 'discrete' has no attribute {name!r}")
+    if name.startswith("__"):
+        raise AttributeError(f"module 'discrete' has no attribute {name!r}")
+    try:                                           # a submodule, as ``import discrete`` used to provide some
+        return importlib.import_module(f"{__name__}.{name}")
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+        raise AttributeError(f"module 'discrete' has no attribute {name!r}") from None
+
+
+def __dir__():
+    return sorted(set(globals()) | {"LinearSystem"})

@@ -105,8 +105,9 @@ class LinearSystem:
         """Record that M, as it is now, is positive semi-definite by construction -- e.g. an FE mass
         matrix ``sum_q rho_q dx_q phi_q phi_q^T`` with densities and quadrature weights >= 0 -- so
         that :func:`~discrete.linear.modal.modal_analysis` need not prove it by a factorisation.
-        The assembler calls this after checking the conditions that ``reason`` states; M must not
-        be changed in place afterwards."""
+        The assembler calls this after checking the conditions that ``reason`` states.  The proof
+        follows the matrix object, so a replaced or rebuilt M has none; M must not be changed in
+        place afterwards (nothing detects that)."""
         self.mass_proof = (str(reason), self.M)
 
     @property

@@ -51,3 +51,9 @@ def test_an_encoded_document_is_written_as_it_is(tmp_path, monkeypatch):
     assert calls == [1]
     assert (tmp_path / "a.json").read_text() == (tmp_path / "b.json").read_text()
     assert json.loads((tmp_path / "a.json").read_text()) == doc
+
+
+def test_extended_precision_arrays_become_python_floats():
+    out = encode({"x": np.array([1.5, 2.25], dtype=np.longdouble), "h": np.array([0.5], dtype=np.float16)})
+    assert out == {"x": [1.5, 2.25], "h": [0.5]} and all(type(v) is float for v in out["x"] + out["h"])
+    assert json.loads(json.dumps(out)) == out

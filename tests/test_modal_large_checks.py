@@ -174,6 +174,7 @@ def test_unknown_block_count_keeps_the_negatives_found(monkeypatch):
     assert modal._blockwise_negative_count(sp.block_diag([A, B]).tocsr()) == 2
     assert modal._blockwise_negative_count(sp.block_diag([A, A]).tocsr()) is None
 
+
 def _small_solid(**kw):
     from fem.solid import ShaftMeshSpec, build_solid
     from validation.builders import uniform

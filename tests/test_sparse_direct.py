@@ -254,3 +254,29 @@ def test_mkl_is_found_in_the_prefix_without_a_search(monkeypatch):
         sd.mkl_library.cache_clear()
     assert lib is not None and lib._name == near
     assert "PYPARDISO_MKL_RT" not in __import__("os").environ
+
+
+@needs_pardiso
+def test_a_hint_that_does_not_load_falls_back_on_pypardisos_search(monkeypatch):
+    """A library in the prefix that cannot be loaded (a dangling link) does not switch PARDISO off:
+    pypardiso's own search runs; a PYPARDISO_MKL_RT set by the user is used and left as it is."""
+    import os
+
+    def fresh():
+        for name in ("pypardiso", "pypardiso.scipy_aliases"):
+            monkeypatch.delitem(sys.modules, name, raising=False)
+        sd.mkl_library.cache_clear()
+
+    monkeypatch.delenv("PYPARDISO_MKL_RT", raising=False)
+    monkeypatch.setattr(sd, "_mkl_rt_in_prefix", lambda: "/nonexistent/libmkl_rt.so.3")
+    fresh()
+    try:
+        assert sd.mkl_library() is not None
+        assert "PYPARDISO_MKL_RT" not in os.environ
+        real = sd.mkl_library()._name
+        monkeypatch.setenv("PYPARDISO_MKL_RT", real)
+        monkeypatch.setattr(sd, "_mkl_rt_in_prefix", lambda: pytest.fail("the user's setting was overridden"))
+        fresh()
+        assert sd.mkl_library()._name == real and os.environ["PYPARDISO_MKL_RT"] == real
+    finally:
+        sd.mkl_library.cache_clear()

@@ -89,6 +89,23 @@ def test_exponentials_by_runs_equal_one_per_interval():
     assert all(np.array_equal(a.view(np.uint64), b.view(np.uint64)) for a, b in zip(runs, direct))
 
 
+def test_floquet_of_a_linear_oscillator_is_its_exact_exponential():
+    """One DOF and no nonlinear element (k, c scalars in the batch): every interval has the same
+    matrix, the exponential midpoint rule is exact, and the multipliers are exp(lambda T) of the
+    roots of m s^2 + c s + k, at every orbit of a batch."""
+    doc = {"body": [{"name": "m", "inertia": 2.0}], "spring": [{"between": ["ground", "m"], "k": 3.0}],
+           "damper": [{"between": ["ground", "m"], "c": 0.2}], "force": [{"body": "m", "amplitude": 0.1, "omega": 1.3}],
+           "steady": {"omega": [1.0, 1.5], "harmonics": 3, "response": {"body": "m", "measure": "h1"}}}
+    hb = HBModel(steady_model(doc).system, harmonics=3)
+    ws = np.array([1.1, 1.3])
+    Xs = [hb.solve(hb.linear_guess(w), w)[0] for w in ws]
+    mu = floquet_hb_batch(hb, Xs, ws)
+    lam = np.roots([2.0, 0.2, 3.0])
+    for m, w in zip(mu, ws):
+        exact = np.sort_complex(np.exp(lam * 2 * np.pi / w))
+        assert np.max(np.abs(np.sort_complex(m) - exact)) < 1e-12
+
+
 def _floquet_reference(hb, X, w, M):
     """The exponential-midpoint monodromy the plain way: rhs_terms at the midpoints, one exponential
     per interval (scipy), sequential product."""

@@ -236,22 +236,26 @@ MTYPE = -2                                         # real symmetric indefinite
 
 @lru_cache(maxsize=1)
 def mkl_library():
-    """MKL's runtime library (``ctypes.CDLL``) as pypardiso locates it, or None if not installed.
+    """MKL's runtime library (``ctypes.CDLL``) as pypardiso loads it, or None if not installed; one
+    in ``sys.prefix/lib`` (where the MKL wheel puts it) is tried first, before pypardiso's own
+    search (``find_library``, then a recursive search of ``sys.prefix``).
     Importing pypardiso already makes its default solver, which has found and loaded the library:
     that one is reused (a second ``PyPardisoSolver()`` searched again, 0.18 s per process)."""
     hint = "PYPARDISO_MKL_RT"
-    told = os.environ.get(hint)
-    if told is None and (near := _mkl_rt_in_prefix()):
-        os.environ[hint] = near                     # for this import only: pypardiso searches no further
-    try:
-        import pypardiso
-        solver = getattr(getattr(pypardiso, "scipy_aliases", None), "pypardiso_solver", None)
-        return (solver if solver is not None else pypardiso.PyPardisoSolver()).libmkl
-    except (ImportError, OSError, AttributeError):
-        return None
-    finally:
-        if told is None:
-            os.environ.pop(hint, None)
+    near = _mkl_rt_in_prefix() if hint not in os.environ else None
+    for guess in ([near] if near else []) + [None]:
+        if guess:
+            os.environ[hint] = guess                # for this import only: pypardiso searches no further
+        try:
+            import pypardiso
+            solver = getattr(getattr(pypardiso, "scipy_aliases", None), "pypardiso_solver", None)
+            return (solver if solver is not None else pypardiso.PyPardisoSolver()).libmkl
+        except (ImportError, OSError, AttributeError):
+            continue                                # the guess did not load: pypardiso's own search
+        finally:
+            if guess:
+                os.environ.pop(hint, None)
+    return None
 
 
 def _mkl_rt_in_prefix():

@@ -19,7 +19,6 @@ from .exit_codes import EXIT_INTERRUPTED
 from .progress import progress_bar
 
 
-
 def _outputs(args, **options) -> None:
     """Check every output path given on the command line before any work starts."""
     for attr, directory in options.items():

@@ -38,7 +38,7 @@ def encode(obj, path="$"):
             raise SolverError(f"the result is not finite at {_where(path)}[{']['.join(map(str, bad))}]: the "
                               "computation lost its meaning there (check the model's parameters, or the solver's "
                               "warnings above)")
-        if obj.dtype.kind in "biuf":
+        if obj.dtype.kind in "biu" or (obj.dtype.kind == "f" and obj.dtype.itemsize <= 8):
             return obj.tolist()              # Python bools, ints and floats, all finite: JSON as they are
         return encode(obj.tolist(), path)
     if isinstance(obj, dict):
@@ -74,4 +74,3 @@ def write_json(path, data, encoded: bool = False) -> Path:
     tmp.write_text(text)
     os.replace(tmp, path)
     return path
-

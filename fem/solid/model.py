@@ -244,6 +244,7 @@ def _attachments(model, solid, outer, inner):
     comp = np.repeat(np.arange(3), Ns)
     held = []
     masses_proven = None                 # True: every mass term added has coefficients and facet weights >= 0
+    #                                      (False: one has not, e.g. a section area < 0 at a step)
     ends = np.concatenate(([0.0], np.cumsum([s.length for s in model.segments])))
 
     def section_props(x):
@@ -263,7 +264,8 @@ def _attachments(model, solid, outer, inner):
         if facets.size == 0:
             raise ModelError("solid model", "x", x, "a position on a mesh section")
         fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=4)
-        weights_ok[0] = bool(np.all(fb.dx >= 0))
+        coefficients = np.array([area, axial, transverse, tangential], float)
+        weights_ok[0] = bool(np.all(fb.dx >= 0) and np.all(np.isfinite(coefficients)) and np.all(coefficients >= 0))
         xg = np.asarray(fb.global_coordinates())
         y, z = xg[1], xg[2]
         r2 = y * y + z * z + 1e-300
@@ -301,7 +303,7 @@ def _attachments(model, solid, outer, inner):
             M = M + section_matrix(p.x, area=p.mass / A,
                                    tangential=p.inertia / J if model.physics == "torsion" else 0.0,
                                    axial=p.inertia / Id if model.physics == "bending" else 0.0)
-            masses_proven = masses_proven is not False and p.mass >= 0 and p.inertia >= 0 and weights_ok[0]
+            masses_proven = masses_proven is not False and weights_ok[0]     # the coefficients as assembled
         if p.k or p.kr:
             K = K + spring(p.x, p.k, p.kr)
     return sp.csr_matrix(K), sp.csr_matrix(M), np.unique(np.asarray(held, dtype=int)), masses_proven

@@ -120,7 +120,8 @@ class Friction(Element):
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps):
         """Regularised ``-a0 tanh(w / eps) - a1 w - a2 w|w| - a3 w^3`` (harmonic balance); a power-law
-        term whose coefficient is zero is left out (the same values, fewer array passes)."""
+        term whose coefficient is zero is left out (the same values for finite w, fewer array
+        passes)."""
         w = sd - self.surface_velocity
         fk = self.kinetic
         th = np.tanh(w / eps)
