@@ -71,3 +71,23 @@ def test_ctrl_c_while_the_commands_load_is_a_clean_interrupt(monkeypatch, capsys
     monkeypatch.setattr(builtins, "__import__", interrupted)
     code = main(["modal", str(ROOT / "examples" / "cantilever.toml")])
     assert code == 130 and "drivefem: interrupted" in capsys.readouterr().err
+
+
+def test_a_missing_package_is_reported_as_an_incomplete_installation(monkeypatch, capsys):
+    """A third-party package that cannot be imported while the commands load is named as such (not
+    as a bug of drivefem); exit 70, one line, no traceback."""
+    import builtins
+
+    from fem.app.cli import main
+
+    real_import = builtins.__import__
+
+    def broken(name, globals=None, locals=None, fromlist=(), level=0):
+        if level == 1 and fromlist and "commands" in fromlist:
+            raise ModuleNotFoundError("No module named 'skfem'", name="skfem")
+        return real_import(name, globals, locals, fromlist, level)
+
+    monkeypatch.setattr(builtins, "__import__", broken)
+    code = main(["modal", str(ROOT / "examples" / "cantilever.toml")])
+    err = capsys.readouterr().err
+    assert code == 70 and "the package 'skfem' is missing or broken" in err and "internal error" not in err

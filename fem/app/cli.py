@@ -117,6 +117,11 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as exc:  # a bug: one line for the user, the traceback with DRIVEFEM_DEBUG=1
         if os.environ.get("DRIVEFEM_DEBUG"):
             traceback.print_exc()
+        missing = exc.name if isinstance(exc, ImportError) else None
+        if missing and missing.split(".")[0] not in ("fem", "discrete", "validation"):
+            print(f"drivefem: error: the package {missing!r} is missing or broken ({exc}); the installation is "
+                  "incomplete: run `make` again (or `pip install -e .` in the project's environment)", file=sys.stderr)
+            return EXIT_INTERNAL
         tb = traceback.extract_tb(exc.__traceback__)[-1]
         print(f"drivefem: internal error: {type(exc).__name__}: {exc} (at {os.path.basename(tb.filename)}:{tb.lineno}; "
               "please report it with the model file; DRIVEFEM_DEBUG=1 shows the traceback)", file=sys.stderr)
