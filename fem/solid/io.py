@@ -55,8 +55,6 @@ def solid_from_mesh(source, material: Material, clamped_at: tuple[float, ...] = 
     tol = 1e-9 * solid.length
     xdof = np.tile(solid.basis.doflocs[0], 3)
     held = np.flatnonzero(np.any([np.abs(xdof - x) < tol for x in clamped_at], axis=0)) if clamped_at else np.zeros(0, int)
-    proven = solid.system.mass_semidefinite_reason
-    solid.system = _system(solid.basis, solid.system.K, solid.system.M, held, title)
-    if proven:                                       # the same M, with supports now
-        solid.system.prove_mass_semidefinite(proven)
+    solid.system = _system(solid.basis, solid.system.K, solid.system.M, held, title,
+                           solid.system.mass_semidefinite_reason)     # the same M, with supports now
     return solid

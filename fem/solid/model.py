@@ -168,23 +168,27 @@ def build_solid(model: ShaftModel, spec: ShaftMeshSpec | None = None) -> SolidMo
                            np.array([_lame(m.E, m.G)[1] for m in mats])[seg],
                            np.array([m.rho for m in mats])[seg], title=model.title)
     proven = solid.system.mass_semidefinite_reason
-    K, M, held, masses_proven = _attachments(model, solid, outer, inner)
-    solid.system = _system(solid.basis, K, M, held, model.title)
-    if proven and masses_proven is not False:
-        solid.system.prove_mass_semidefinite(proven + ("; point masses and inertias >= 0 as section integrals "
-                                                       "with facet weights >= 0" if masses_proven else ""))
+    K, M, held, mass_terms_ok = _attachments(model, solid, outer, inner)
+    if proven and mass_terms_ok:
+        proven += "; point masses and inertias >= 0 as section integrals with facet weights >= 0"
+    solid.system = _system(solid.basis, K, M, held, model.title, proven if all(mass_terms_ok) else None)
     solid.model = model
     solid.length = model.length
     return solid
 
 
-def _system(basis, K, M, held, title) -> LinearSystem:
+def _system(basis, K, M, held, title, mass_reason: str | None = None) -> LinearSystem:
+    """The solid's LinearSystem; ``mass_reason``: why M is positive semi-definite by construction
+    (recorded with it, :meth:`LinearSystem.prove_mass_semidefinite`), None if not proven."""
     Ns = basis.N
     comp = np.repeat(np.arange(3), Ns)
     doflocs = np.tile(basis.doflocs, 3)
-    return LinearSystem(M=M, K=K, dof_field=np.array(["u_x", "u_y", "u_z"], dtype=object)[comp],
-                        dof_x=doflocs[0].copy(), constrained=held, rigid_modes=_rigid_modes(doflocs, comp, held),
-                        title=title, physics="solid (3D elasticity)")
+    system = LinearSystem(M=M, K=K, dof_field=np.array(["u_x", "u_y", "u_z"], dtype=object)[comp],
+                          dof_x=doflocs[0].copy(), constrained=held, rigid_modes=_rigid_modes(doflocs, comp, held),
+                          title=title, physics="solid (3D elasticity)")
+    if mass_reason:
+        system.prove_mass_semidefinite(mass_reason)
+    return system
 
 
 def assemble_solid(mesh, mu, lam, rho, title: str = "", cell_type: str = "hexahedron") -> SolidModel:
@@ -199,12 +203,12 @@ def assemble_solid(mesh, mu, lam, rho, title: str = "", cell_type: str = "hexahe
     Ms = asm(forms.scalar_mass, basis, rho=np.repeat(np.asarray(rho, float)[:, None], nq, axis=1))
     M = sp.block_diag([Ms, Ms, Ms], format="csr")
     x = basis.doflocs[0]
-    system = _system(basis, K, M, np.zeros(0, dtype=int), title)
-    if np.all(np.asarray(rho, float) >= 0) and np.all(basis.dx >= 0):
-        # M = sum over quadrature points of rho_q dx_q phi_q phi_q^T, dx = |det J| x weight: a sum of
-        # positive semi-definite terms (modal_analysis then skips its Sylvester count of M)
-        system.prove_mass_semidefinite(f"consistent mass of {type(elem).__name__} elements: densities >= 0 and "
-                                       "quadrature weights x |det J| >= 0")
+    # M = sum over quadrature points of rho_q dx_q phi_q phi_q^T, dx = |det J| x weight: a sum of
+    # positive semi-definite terms (modal_analysis then skips its Sylvester count of M)
+    proven = np.all(np.asarray(rho, float) >= 0) and np.all(basis.dx >= 0)
+    system = _system(basis, K, M, np.zeros(0, dtype=int), title,
+                     f"consistent mass of {type(elem).__name__} elements: densities >= 0 and quadrature weights x "
+                     "|det J| >= 0" if proven else None)
     return SolidModel(mesh=mesh, basis=basis, system=system, length=float(x.max() - x.min()), element=type(elem).__name__,
                       cell_type=cell_type)
 
@@ -243,8 +247,7 @@ def _attachments(model, solid, outer, inner):
     xdof = np.tile(basis.doflocs[0], 3)
     comp = np.repeat(np.arange(3), Ns)
     held = []
-    masses_proven = None                 # True: every mass term added has coefficients and facet weights >= 0
-    #                                      (False: one has not, e.g. a section area < 0 at a step)
+    mass_terms_ok = []                   # per mass term added: coefficients and facet weights >= 0
     ends = np.concatenate(([0.0], np.cumsum([s.length for s in model.segments])))
 
     def section_props(x):
@@ -255,17 +258,16 @@ def _attachments(model, solid, outer, inner):
         Id = math.pi * (ro**4 - ri**4) / 4
         return math.pi * (ro**2 - ri**2), Id, 2 * Id
 
-    weights_ok = [True]
-
-    def section_matrix(x, area=0.0, axial=0.0, transverse=0.0, tangential=0.0):
+    def section_matrix(x, area=0.0, axial=0.0, transverse=0.0, tangential=0.0, terms_ok=None):
         """Vector matrix of int (area u.v + axial u_x v_x + transverse (u_y v_y + u_z v_z)
         + tangential (u.e_theta)(v.e_theta)) over the cross-section at x."""
         facets = mesh.facets_satisfying(lambda p: np.abs(p[0] - x) < tol)
         if facets.size == 0:
             raise ModelError("solid model", "x", x, "a position on a mesh section")
         fb = FacetBasis(mesh, basis.elem, facets=facets, intorder=4)
-        coefficients = np.array([area, axial, transverse, tangential], float)
-        weights_ok[0] = bool(np.all(fb.dx >= 0) and np.all(np.isfinite(coefficients)) and np.all(coefficients >= 0))
+        if terms_ok is not None:        # a mass term: positive semi-definite (e.g. not a section area < 0 at a step)?
+            coefficients = np.array([area, axial, transverse, tangential], float)
+            terms_ok.append(bool(np.all(fb.dx >= 0) and np.all(np.isfinite(coefficients)) and np.all(coefficients >= 0)))
         xg = np.asarray(fb.global_coordinates())
         y, z = xg[1], xg[2]
         r2 = y * y + z * z + 1e-300
@@ -302,8 +304,7 @@ def _attachments(model, solid, outer, inner):
         if p.mass or p.inertia:
             M = M + section_matrix(p.x, area=p.mass / A,
                                    tangential=p.inertia / J if model.physics == "torsion" else 0.0,
-                                   axial=p.inertia / Id if model.physics == "bending" else 0.0)
-            masses_proven = masses_proven is not False and weights_ok[0]     # the coefficients as assembled
+                                   axial=p.inertia / Id if model.physics == "bending" else 0.0, terms_ok=mass_terms_ok)
         if p.k or p.kr:
             K = K + spring(p.x, p.k, p.kr)
-    return sp.csr_matrix(K), sp.csr_matrix(M), np.unique(np.asarray(held, dtype=int)), masses_proven
+    return sp.csr_matrix(K), sp.csr_matrix(M), np.unique(np.asarray(held, dtype=int)), mass_terms_ok
