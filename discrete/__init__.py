@@ -6,26 +6,8 @@ Depends on numpy and scipy only.  The common currency between ``fem`` and
 module such as :mod:`discrete.errors` does not load scipy.
 """
 from .errors import ModelError
+from .lazy import lazy_exports as _lazy_exports
 
 __all__ = ["ModelError", "LinearSystem"]
 
-
-def __getattr__(name):
-    import importlib
-
-    if name == "LinearSystem":
-        from .linear_system import LinearSystem
-        globals()[name] = LinearSystem
-        return LinearSystem
-    if name.startswith("__"):
-        raise AttributeError(f"module 'discrete' has no attribute {name!r}")
-    try:                                           # a submodule, as ``import discrete`` used to provide some
-        return importlib.import_module(f"{__name__}.{name}")
-    except ModuleNotFoundError as exc:
-        if exc.name != f"{__name__}.{name}":
-            raise
-        raise AttributeError(f"module 'discrete' has no attribute {name!r}") from None
-
-
-def __dir__():
-    return sorted(set(globals()) | {"LinearSystem"})
+__getattr__, __dir__ = _lazy_exports(__name__, {"LinearSystem": "discrete.linear_system"}, globals())

@@ -5,7 +5,7 @@ The analyses of an assembled :class:`~discrete.linear_system.LinearSystem` live 
 They are imported on first use (``from fem import modal_analysis`` works as before), so that the
 command line's start and ``import fem.app.cli`` do not load scikit-fem and scipy up front.
 """
-import importlib as _importlib
+from discrete.lazy import lazy_exports as _lazy_exports
 
 _EXPORTS = {**dict.fromkeys(["Damping", "HarmonicResult", "ModalResult", "ReducedModel", "frf",
                              "harmonic_response", "modal_analysis", "reduce", "static_deflection"], "discrete.linear"),
@@ -17,22 +17,4 @@ __all__ = ["FEModel", "assemble", "ShaftModel", "Segment", "Support", "PointAtta
            "ModalResult", "modal_analysis", "Damping", "HarmonicResult", "harmonic_response", "frf",
            "ReducedModel", "reduce", "static_deflection", "Material", "Section"]
 
-
-def __getattr__(name):
-    where = _EXPORTS.get(name)
-    if where is None:                              # a submodule, as ``import fem`` used to provide them
-        if name.startswith("__"):
-            raise AttributeError(f"module 'fem' has no attribute {name!r}")
-        try:
-            return _importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-            raise AttributeError(f"module 'fem' has no attribute {name!r}") from None
-    value = getattr(_importlib.import_module(where), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = _lazy_exports(__name__, _EXPORTS, globals())
