@@ -10,9 +10,12 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from discrete.errors import ModelError
 
 from ..output import check_output_path, columns, contract, tables, write_json
+from ..output.paths import check_outputs
 from ..output.jsonio import encode
 from ..study import Study
 from .exit_codes import EXIT_INTERRUPTED
@@ -20,11 +23,26 @@ from .progress import progress_bar
 
 
 def _outputs(args, **options) -> None:
-    """Check every output path given on the command line before any work starts."""
-    for attr, directory in options.items():
-        value = getattr(args, attr, None)
-        if value:
-            check_output_path(value, "--" + attr.replace("_", "-"), directory=directory)
+    """Check every output path given on the command line before any work starts: ``attr=kind`` with the kinds
+    of :data:`fem.output.paths.KINDS` (``json``, ``csv``, ``figure``, ``mesh`` files, or ``dir``); one check for
+    all of them, so that no two options write into one path (:func:`fem.output.paths.check_outputs`)."""
+    check_outputs({"--" + attr.replace("_", "-"): (getattr(args, attr, None), kind) for attr, kind in options.items()})
+
+
+def count_option(args, attr: str, low: int, high: int, what: str) -> None:
+    """An integer option (``--modes``, ``--mode``, ``--workers``; a list for a repeatable one) in [low, high]
+    before any work starts: ModelError naming the option otherwise."""
+    values = getattr(args, attr, None)
+    for v in values if isinstance(values, list) else [values]:
+        if v is not None and not low <= v <= high:
+            raise ModelError("command line", "--" + attr, v, f"an integer from {low} to {high:.0f} ({what})")
+
+
+def max_workers() -> int:
+    """The most local sweep workers (processes) allowed: four per CPU."""
+    import os
+
+    return 4 * (os.cpu_count() or 1)
 
 
 def _emit(args, command: str, study, data: dict) -> dict:
@@ -37,7 +55,8 @@ def _emit(args, command: str, study, data: dict) -> dict:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _outputs(args, json=False, plot=False, vtu=False, png=True)
+    _outputs(args, json="json", plot="figure", vtu="mesh", png="dir")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     study = Study.load(args.model)
     if (args.vtu or args.png or args.plot) and study.kind != "fe":
         opt = "--vtu" if args.vtu else ("--png" if args.png else "--plot")
@@ -75,6 +94,12 @@ def modal(args) -> int:
     return 0 if (res.reliable | res.rigid).all() else 3
 
 
+def max_modes() -> int:
+    from ..modelfile import budget
+
+    return int(budget.MAX_MODES * budget.scale())
+
+
 def _dunkerley(study) -> float | None:
     """Dunkerley's lower bound (4.40) of the first frequency of a grounded lumped model."""
     from discrete.dunkerley import dunkerley_bound
@@ -87,7 +112,7 @@ def _dunkerley(study) -> float | None:
 
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
-    _outputs(args, json=False, csv=False, plot=False)
+    _outputs(args, json="json", csv="csv", plot="figure")
     study = Study.load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range
@@ -122,12 +147,14 @@ def forced(args) -> int:
     if steady and not res.completed:
         print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
         return 1
+    if not steady and not np.all(data.get("reliable", True)):
+        return 3                 # a response not reliable in double precision (flagged in the table and the JSON)
     return 0
 
 
 # ------------------------------------------------------------- compare
 def compare(args) -> int:
-    _outputs(args, json=False)
+    _outputs(args, json="json")
     study = Study.load(args.model)
     if study.kind != "drive":
         raise ModelError(str(args.model), "drive", None, "a model file with a [drive] table (drive of regular structure)")
@@ -139,7 +166,7 @@ def compare(args) -> int:
 
 # ------------------------------------------------------------- simulate
 def simulate(args) -> int:
-    _outputs(args, json=False, csv=False, png=True)
+    _outputs(args, json="json", csv="csv", png="dir")
     study = Study.load(args.model)
     if study.kind not in ("lumped", "hybrid"):
         raise ModelError(str(args.model), "simulation", None, "a lumped or hybrid model file with a [simulation] table "
@@ -166,7 +193,10 @@ def simulate(args) -> int:
 def sweep(args) -> int:
     from .sweep import run_sweep
 
-    _outputs(args, json=False, out=True, resume=True)
+    _outputs(args, json="json", out="dir")
+    if args.resume is not None:
+        check_output_path(args.resume, "--resume", directory=True)
+    count_option(args, "workers", 0, max_workers(), "local worker processes; 0: serial, without Dask")
     return run_sweep(args.model, scheduler=args.scheduler, resume=args.resume, out=args.out, json_path=args.json,
                      workers=args.workers)
 
@@ -175,7 +205,7 @@ def sweep(args) -> int:
 def validate(args) -> int:
     from validation.report import print_table, run_validation, write_report
 
-    _outputs(args, json=False, report=True)
+    _outputs(args, json="json", report="dir")
     outcomes = run_validation(args.case or None, include_slow=not args.fast, progress=not args.quiet)
     print_table(outcomes)
     data = {"cases": [c.to_dict() | {"case": o.case.name} for o in outcomes for c in o.checks],
@@ -192,7 +222,9 @@ def validate(args) -> int:
 def render(args) -> int:
     from ..render import render_study
 
-    _outputs(args, out=True)
+    _outputs(args, out="dir")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
+    count_option(args, "mode", 1, max_modes(), "a mode number")
     study = Study.load(args.model)
     modes = [int(m) for m in args.mode] if args.mode else None
     rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes)
@@ -206,7 +238,7 @@ def render(args) -> int:
 def schema(args) -> int:
     from ..modelfile.load import dumps_schema
 
-    _outputs(args, out=False)
+    _outputs(args, out="json")
     text = dumps_schema(args.kind)
     if args.out:
         Path(args.out).write_text(text)
@@ -221,5 +253,5 @@ def demo(args, run_command) -> int:
     """``drivefem demo``: ``run_command`` is the command line's ``main`` (each example runs through it)."""
     from .demo import run_demo
 
-    _outputs(args, out=True)
+    _outputs(args, out="dir")
     return run_demo(Path(args.out), run_command)

@@ -8,7 +8,8 @@ import sys
 
 import numpy as np
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import contract, write_csv, write_json
+from ..output.paths import check_outputs
 from ..output.jsonio import encode
 
 
@@ -27,9 +28,7 @@ def parametric(args) -> int:
     from ..modelfile.build.parametric import run
     from ..study import Study
 
-    for opt in ("json", "png", "csv"):
-        if getattr(args, opt, None):
-            check_output_path(getattr(args, opt), "--" + opt)
+    check_outputs({"--json": (args.json, "json"), "--png": (args.png, "figure"), "--csv": (args.csv, "csv")})
     study = Study.load(args.model)
     spec, chart = run(study)
     data = contract.parametric_data(study, spec, chart)

@@ -23,7 +23,9 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import contract, write_csv, write_json
+from ..output.paths import check_outputs
+from .commands import max_modes, count_option
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -63,10 +65,8 @@ def is_rotor_file(path) -> bool:
 
 
 def _check_outputs(args, **options) -> None:
-    for attr, directory in options.items():
-        value = getattr(args, attr, None)
-        if value:
-            check_output_path(value, "--" + attr, directory=directory)
+    """The output paths (``attr=kind``), checked as every command checks them (:func:`fem.output.paths.check_outputs`)."""
+    check_outputs({"--" + attr: (getattr(args, attr, None), kind) for attr, kind in options.items()})
 
 
 def _emit(args, command: str, study, data: dict) -> dict:
@@ -91,7 +91,8 @@ def _linear_note(study) -> None:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False, plot=False, png=True)
+    _check_outputs(args, json="json", plot="figure", png="dir")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     if getattr(args, "vtu", None):
         raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
                          "for a rotor model file")
@@ -153,7 +154,7 @@ def modal_table(study, res, out=None) -> None:
 
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, json="json", csv="csv", plot="figure")
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
@@ -166,7 +167,7 @@ def forced(args) -> int:
         from ..rotor.plots import plot_bode
 
         print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
-    return 0
+    return 0 if all(p.resolved for p in res.peaks) else 3      # an undamped peak: not a property of the rotor
 
 
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
@@ -211,7 +212,8 @@ def response_columns(res) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, json="json", png="figure", csv="csv")
+    count_option(args, "modes", 1, max_modes(), "the number of tracked modes")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
@@ -267,7 +269,7 @@ def campbell_columns(camp) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json="json", csv="csv", png="dir")
     from .progress import progress_bar
 
     study = _load(args.model)

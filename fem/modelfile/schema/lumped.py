@@ -7,7 +7,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import NonNegative, Positive, Table, rule
+from .base import Fraction, NonNegative, Positive, Table, rule
 
 
 class NodeEnd(Table):
@@ -34,8 +34,9 @@ class Body(Table):
     """Mass (kg) or moment of inertia (kg m^2) of the coordinate."""
     inertia_rate: float = 0.0
     """d(inertia)/dt: variable mass m0 + delta t (seed 004 (1), Newton form), kg/s."""
-    reactive: float = 0.0
-    """Reactive coefficient epsilon of seed 004 (reactive damping epsilon * inertia_rate)."""
+    reactive: Fraction = 0.0
+    """Reactive coefficient epsilon of seed 004 (reactive damping epsilon * inertia_rate), in [0, 1]: 0 a mass
+    change at zero relative velocity, 1 the momentum form (m x')' = F."""
     x0: float = 0.0
     """Initial displacement."""
     v0: float = 0.0
