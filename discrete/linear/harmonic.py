@@ -211,18 +211,48 @@ def reliability_warnings(omegas: np.ndarray, err: np.ndarray) -> list[str]:
             "holds (a free body, a motor's rotor); add damping or supports, or move the frequency"]
 
 
-def _estimate(solve, D, x, rhs) -> float:
-    """Relative error of the solution ``x`` of D x = rhs, estimated by one step of iterative refinement (the
-    correction D^-1 (rhs - D x) of the residual computed in working precision; Higham, Accuracy and Stability
-    of Numerical Algorithms, §12.1): about kappa(D) eps, of order 1 where D is singular to working precision."""
+def _norm1_estimate(apply, apply_h, n: int, iterations: int = 5) -> float:
+    """||B||_1 of an operator given by ``apply`` (B v) and ``apply_h`` (B^H w): Hager's estimator with Higham's
+    refinements (LAPACK xLACN2; Higham, Accuracy and Stability of Numerical Algorithms, Alg. 15.4), a lower
+    bound that is almost always within a factor 3 of the norm, at 2-6 applications."""
+    x = np.full(n, 1.0 / n, dtype=complex)
+    y = apply(x)
+    est = float(np.sum(np.abs(y)))
+    if n == 1:
+        return est
+    for _ in range(iterations):
+        xi = np.where(np.abs(y) > 0, y / np.where(np.abs(y) > 0, np.abs(y), 1.0), 1.0)
+        z = apply_h(xi)
+        j = int(np.argmax(np.abs(z)))
+        if np.abs(z[j]) <= np.real(np.vdot(z, x)):
+            break
+        x = np.zeros(n, dtype=complex)
+        x[j] = 1.0
+        y = apply(x)
+        new = float(np.sum(np.abs(y)))
+        if new <= est:
+            break
+        est = new
+    alt = np.array([(-1) ** i * (1 + i / (n - 1)) for i in range(n)], dtype=complex)
+    return max(est, 2.0 * float(np.sum(np.abs(apply(alt)))) / (3 * n))
+
+
+def _estimate(lu, D, x, rhs) -> float:
+    """Relative error bound of the solution ``x`` of D x = rhs (LAPACK's forward error bound of xGERFS):
+    || |D^-1| (|rhs - D x| + n eps |D| |x|) ||_inf / ||x||_inf, the norm estimated by :func:`_norm1_estimate`.
+    It covers the solver's rounding and that of D's own entries (K - omega^2 M formed in working precision):
+    of order 1 where D is singular to working precision (an undamped resonance hit, omega = 0 of a free motion),
+    and componentwise, so that an FE model's spread of scales does not inflate it."""
     scale = float(np.max(np.abs(x))) if x.size else 0.0
     if scale == 0.0:
         return 0.0
-    r = rhs - D @ x
+    absD = abs(D)
+    g = np.abs(rhs - D @ x) + (absD.getnnz(axis=1).max(initial=1) + 1) * EPS * (absD @ np.abs(x))
     with np.errstate(all="ignore"):
-        d = solve(r)
-        e = float(np.max(np.abs(d))) / scale
-    return e if np.isfinite(e) else np.inf
+        est = _norm1_estimate(lambda v: g * lu.solve(np.asarray(v, complex), trans="H"),
+                              lambda w: lu.solve(np.asarray(g * w, complex)), x.size)
+        e = est / scale
+    return float(e) if np.isfinite(e) else np.inf
 
 
 def _frequencies(omegas) -> np.ndarray:
@@ -292,7 +322,7 @@ def _direct(system, omegas, F, F2, Ub, C, H):
                               f"or a free system at omega = 0): add damping or move the frequency") from exc
         rhs = np.asarray(rhs, dtype=complex)
         Q[j, f] = lu.solve(rhs)
-        err[j] = _estimate(lu.solve, Dff, Q[j, f], rhs)
+        err[j] = _estimate(lu, Dff, Q[j, f], rhs)
         Q[j, b] = Ub
     return Q, err
 
