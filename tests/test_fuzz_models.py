@@ -1,6 +1,7 @@
 """The model-file fuzzer (issue 11, item 6): mutated example files through the ``drivefem`` commands.
 
-Every run must (1) exit with a documented code {0, 1, 2, 3, 4, 5}, (2) print no "Traceback",
+Every run must (1) exit with a documented code {0, 1, 2, 3, 4, 5} (exit 70, drivefem's "internal error",
+is a failure like a traceback), (2) print no "Traceback",
 (3) write no JSON with a NaN/Infinity/overflowing number, and (4) finish within its wall-clock limit.
 The default tier runs a deterministic sample over every example (each example's main command, two
 subprocesses at a time); the slow tier runs >= 3000 mutated files through every applicable command.
@@ -60,6 +61,9 @@ def main():
         time.sleep(600)
     if "badexit" in text:
         return 7
+    if "internal" in text:
+        print("drivefem: internal error: ValueError: boom (at x.py:1; please report it)", file=sys.stderr)
+        return 70
     if "nan" in text:
         json.dump({"amplitude": [1.0, math.nan], "x": {"y": math.inf}}, open(out, "w"))
         return 0
@@ -88,7 +92,8 @@ def test_harness_detects_each_failure_class(tmp_path, fork):
     root.mkdir()
     (root / "pyproject.toml").write_text('[project]\nname = "x"\n[project.scripts]\ndrivefem = "fakecli:main"\n')
     (root / "fakecli.py").write_text(textwrap.dedent(FAKE_CLI))
-    expected = {"ok": "OK", "traceback": "TRACEBACK", "hang": "HANG", "badexit": "BADEXIT", "nan": "NONFINITE",
+    expected = {"ok": "OK", "traceback": "TRACEBACK", "hang": "HANG", "badexit": "BADEXIT", "internal": "BADEXIT",
+                "nan": "NONFINITE",
                 "overflow": "NONFINITE", "truncated": "BADJSON", "unnamed": "BADMESSAGE", "named": "OK"}
     jobs = [Job(Mutation(f"fake/test/-/{word}", "fake", "test", word, data=f"x = '{word}'\n".encode(),
                          names=("E", "material")), "modal") for word in expected]
@@ -123,7 +128,7 @@ def test_mutations_are_deterministic_and_cover_every_example():
     assert all(m.description and "\n" not in m.description for m in first)
     cats = {m.category for m in first}
     assert {"number", "count", "type", "enum", "structure", "duplicate", "unknown_key", "delete", "semantic",
-            "broken_toml", "encoding", "filesystem", "nesting", "output", "control"} <= cats
+            "broken_toml", "encoding", "filesystem", "nesting", "output", "control", "extreme", "cli"} <= cats
     assert {m.example for m in fast_sample(examples)} == {ex.name for ex in examples}
     stratified = slow_sample(examples, 3000, budget=False)
     full = slow_sample(examples, 3000)

@@ -4,7 +4,8 @@ Classes, in order of precedence (a run gets the first that applies; every findin
 
 ``HANG``        the run was still going at its wall-clock limit (killed; its stack is in the dump)
 ``TRACEBACK``   "Traceback" in stdout or stderr
-``BADEXIT``     an exit code outside the documented set {0, 1, 2, 3, 4, 5}, or death by a signal
+``BADEXIT``     an exit code outside the documented set {0, 1, 2, 3, 4, 5} -- among them 70, drivefem's own
+                "internal error" (a bug, as a traceback is) -- or death by a signal
 ``NONFINITE``   a JSON file written holds NaN, Infinity or a number that overflows to inf
 ``BADJSON``     a JSON file written does not parse (truncated, not UTF-8, ...)
 ``BADMESSAGE``  exit 2 without a ``drivefem: error:`` line, or one that names no key (neither a word
@@ -266,7 +267,7 @@ def classify(res: RunResult, root: Path) -> Outcome:
                 name = str(-rc)
             cause = f"killed by {name}"
         else:
-            cause = f"exit code {rc}"
+            cause = f"exit code {rc}" + (" (internal error)" if rc == 70 else "")
         frames = stack_dump(res.stderr)
         if frames:
             cause += f" in {_where(frames, root, innermost_first=True)[0]}"

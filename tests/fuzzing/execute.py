@@ -25,7 +25,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .mutate import Mutation, SECONDARY_OUTPUTS
+from .mutate import FILE_SUFFIX, Mutation, SECONDARY_OUTPUTS
 
 MEMORY_LIMIT = 4 << 30      # bytes of address space per run
 FILE_SIZE_LIMIT = 1 << 30   # bytes per file written
@@ -168,14 +168,19 @@ class Runner:
             outputs = {"--out": "out/render"}
         if cmd == "sweep":
             outputs["--out"] = "out/sweep"
+        secondary = dict(SECONDARY_OUTPUTS.get(cmd, ()))
+
+        def extra_path(option):
+            return f"out/extra{option.replace('-', '_')}" + ("" if secondary.get(option) == "dir"
+                                                                 else FILE_SUFFIX.get(option, ""))
+
         if job.extra_outputs:
-            for option, what in SECONDARY_OUTPUTS.get(cmd, ()):
-                outputs.setdefault(option, f"out/extra{option.replace('-', '_')}" + (".csv" if option == "--csv" else
-                                   ".png" if option == "--plot" else ".vtu" if option == "--vtu" else ""))
+            for option in secondary:
+                outputs.setdefault(option, extra_path(option))
         if m.output:
             option, kind = m.output
-            is_dir = dict(SECONDARY_OUTPUTS.get(cmd, ())).get(option) == "dir"
-            ext = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu"}.get(option, "")
+            is_dir = secondary.get(option) == "dir"
+            ext = "" if is_dir else FILE_SUFFIX.get(option, "")
             if kind == "under_file":
                 actions.append(("file", "out/blocker"))
                 setup.append("touch out/blocker")
@@ -195,6 +200,20 @@ class Runner:
                 outputs[option] = "out/readonly/target" + ext
             elif kind == "dev_full":
                 outputs[option] = "/dev/full"
+            elif kind == "empty":
+                outputs[option] = ""
+            elif kind == "long_name":
+                outputs[option] = "out/" + "n" * 300 + ext
+            elif kind == "bad_suffix":
+                outputs[option] = "out/result.xyz"
+            elif kind == "same_path":
+                partner = next((o for o in outputs if o != option), None)
+                if partner is None:          # a second output is added to share the path with
+                    partner = next((o for o in (["--json"] if cmd != "render" else []) + list(secondary)
+                                    if o != option), None)
+                    if partner is not None:
+                        outputs[partner] = extra_path(partner)
+                outputs[option] = outputs[partner] if partner is not None else outputs.get(option, "out/x")
         argv = [cmd, "model.toml"]
         for option, path in outputs.items():
             argv += [option, path]
@@ -202,6 +221,7 @@ class Runner:
             argv += ["--workers", "0"]
         if cmd == "render":
             argv += ["--mode", "1"]
+        argv += list(m.options)          # after the run's own options: an attacked option wins
         return argv, setup, actions
 
     def _prepare(self, run_dir: Path, job: Job, actions: list[tuple]) -> None:

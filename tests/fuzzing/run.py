@@ -43,7 +43,8 @@ FAST_VARIANTS = re.compile(r"/(nan|inf|-inf|count_1e9|count_1e9_float|string|boo
                            r"unclosed_array|key_twice|table_twice_.*|lone_cr|binary_.*|latin1_title|"
                            r"invalid_utf8_comment|utf16|utf8_bom|nul_byte|empty|whitespace|comment_only|directory|"
                            r"missing|fifo|dangling_symlink|array_depth_5000|inline_table_depth_2000|"
-                           r"header_depth_1000|dotted_key_depth_1000|value_depth_3000|.*--json_.*)$")
+                           r"header_depth_1000|dotted_key_depth_1000|value_depth_3000|.*--json_.*|"
+                           r".*--(modes|mode|workers)_.*)$")
 FAST_N = 56          # mutated files in the default tier (plus one cheap-base control per example)
 FAST_LIMIT_S = 20.0  # wall-clock limit of one run in the default tier
 SLOW_LIMIT_S = 60.0
