@@ -290,6 +290,7 @@ class Study:
         settings = self.simulation_settings()
         if progress is not None:
             settings["progress"] = progress
+        settings.setdefault("max_evaluations", budget.numeric_evaluations())
         t_end, method = settings["t_end"], settings["method"]
         spp = settings.get("steps_per_period", 12)
         if self.kind == "hybrid":

@@ -59,6 +59,9 @@ def main():
         raise RuntimeError("boom")
     if "hang" in text:
         time.sleep(600)
+    if "spin" in text:
+        while True:
+            pass
     if "badexit" in text:
         return 7
     if "internal" in text:
@@ -87,17 +90,19 @@ def main():
 @pytest.mark.parametrize("fork", [True, False], ids=["forked", "fresh-interpreter"])
 def test_harness_detects_each_failure_class(tmp_path, fork):
     """A stand-in CLI that fails in every way the fuzzer must catch: each run gets the right class
-    (runs forked from the fork server, and runs in a fresh interpreter each)."""
+    (runs forked from the fork server, and runs in a fresh interpreter each); a run that waits is stopped at
+    the wall-clock ceiling, one that computes at its CPU-time limit."""
     root = tmp_path / "src"
     root.mkdir()
     (root / "pyproject.toml").write_text('[project]\nname = "x"\n[project.scripts]\ndrivefem = "fakecli:main"\n')
     (root / "fakecli.py").write_text(textwrap.dedent(FAKE_CLI))
-    expected = {"ok": "OK", "traceback": "TRACEBACK", "hang": "HANG", "badexit": "BADEXIT", "internal": "BADEXIT",
+    expected = {"ok": "OK", "traceback": "TRACEBACK", "hang": "HANG", "spin": "HANG", "badexit": "BADEXIT",
+                "internal": "BADEXIT",
                 "nan": "NONFINITE",
                 "overflow": "NONFINITE", "truncated": "BADJSON", "unnamed": "BADMESSAGE", "named": "OK"}
     jobs = [Job(Mutation(f"fake/test/-/{word}", "fake", "test", word, data=f"x = '{word}'\n".encode(),
                          names=("E", "material")), "modal") for word in expected]
-    run = execute(jobs, root=root, limit_s=3.0, out_dir=tmp_path / "out", progress=False, fork=fork)
+    run = execute(jobs, root=root, limit_s=3.0, out_dir=tmp_path / "out", progress=False, fork=fork, wall_factor=1.0)
     got = {o.id.split("/")[-1]: o.cls for o in run.outcomes}
     assert got == expected
     nan = next(o for o in run.outcomes if o.id.endswith("/nan"))
@@ -106,6 +111,8 @@ def test_harness_detects_each_failure_class(tmp_path, fork):
     assert tb.root_cause.startswith("RuntimeError in fakecli.py") or "fakecli.py:main" in tb.root_cause
     hang = next(o for o in run.outcomes if o.id.endswith("/hang"))
     assert "fakecli.py:main" in hang.root_cause and hang.repro
+    spin = next(o for o in run.outcomes if o.id.endswith("/spin"))     # out of CPU time (RLIMIT_CPU)
+    assert "fakecli.py:main" in spin.root_cause and spin.duration_s < 30
     assert (tmp_path / "out" / "failures.json").is_file() and (tmp_path / "out" / "summary.md").is_file()
 
 

@@ -374,7 +374,7 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
                 E = (a[:, 1::2] * a[:, 0::2] + b[:, 1::2] * c_[:, 0::2], a[:, 1::2] * b[:, 0::2] + b[:, 1::2] * d_[:, 0::2],
                      c_[:, 1::2] * a[:, 0::2] + d_[:, 1::2] * c_[:, 0::2], c_[:, 1::2] * b[:, 0::2] + d_[:, 1::2] * d_[:, 0::2])
             Mono = np.stack([np.stack([E[0][:, 0], E[1][:, 0]], -1), np.stack([E[2][:, 0], E[3][:, 0]], -1)], -2)
-            out[c0:c0 + P] = np.linalg.eigvals(Mono)
+            out[c0:c0 + P] = _multipliers(Mono)
             continue
         # the interval matrices depend on (h, dF_e/ds, dF_e/ds') only: piecewise-linear laws (contact on/off)
         # and saturated friction (tanh' = 0 while slipping) repeat them exactly -- exponentiate each once
@@ -394,7 +394,17 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
             if E.shape[1] % 2:
                 E = np.concatenate([E, np.broadcast_to(np.eye(d), (E.shape[0], 1, d, d))], axis=1)
             E = E[:, 1::2] @ E[:, 0::2]
-        out[c0:c0 + P] = np.linalg.eigvals(E[:, 0])
+        out[c0:c0 + P] = _multipliers(E[:, 0])
+    return out
+
+
+def _multipliers(mono: np.ndarray) -> np.ndarray:
+    """Eigenvalues of a batch of monodromy matrices; NaN for one that overflowed (a period the midpoint rule
+    does not resolve: stability unknown, so the orbit is not reported stable and its max |mu| is null)."""
+    out = np.full(mono.shape[:-1], np.nan, complex)
+    ok = np.all(np.isfinite(mono), axis=(-2, -1))
+    if np.any(ok):
+        out[ok] = np.linalg.eigvals(mono[ok])
     return out
 
 

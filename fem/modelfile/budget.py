@@ -24,6 +24,14 @@ MAX_START_STEPS = 100_000        # steps of the DOP853 run that starts HB ([stea
 MAX_OUTPUT_SAMPLES = 2_000_000   # recorded instants of a simulation
 MAX_RECORDED_VALUES = 100_000_000  # numbers a time integration keeps in memory (every step end x state size)
 MAX_RESPONSE_VALUES = 50_000_000   # complex amplitudes a harmonic analysis keeps (frequencies x DOFs, samples x outputs)
+MAX_NUMERIC_EVALUATIONS = 500_000  # right-hand sides of the numeric pieces of an event-driven run (checked as it runs)
+
+
+def numeric_evaluations() -> int:
+    """The right-hand-side evaluations the numerically integrated pieces of an event-driven run may use: their
+    cost shows only while they run (a stiff law makes DOP853's steps tiny), so the solver stops the run when
+    they are used up (exit 1, results up to there kept)."""
+    return int(MAX_NUMERIC_EVALUATIONS * scale())
 
 
 def scale() -> float:

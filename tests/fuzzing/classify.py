@@ -2,7 +2,8 @@
 
 Classes, in order of precedence (a run gets the first that applies; every finding is also a flag):
 
-``HANG``        the run was still going at its wall-clock limit (killed; its stack is in the dump)
+``HANG``        the run was still going at its limit: its CPU time, or the wall-clock ceiling for a run that
+                waits without computing (killed; its stack is in the dump)
 ``TRACEBACK``   "Traceback" in stdout or stderr
 ``BADEXIT``     an exit code outside the documented set {0, 1, 2, 3, 4, 5} -- among them 70, drivefem's own
                 "internal error" (a bug, as a traceback is) -- or death by a signal
@@ -251,7 +252,7 @@ def classify(res: RunResult, root: Path) -> Outcome:
     if cls == "HANG":
         where, lib = _where(stack_dump(res.stderr), root, innermost_first=True)
         cause = f"hang in {where}"
-        detail = f"still running after {res.duration_s:.0f} s" + (f"; innermost frame {lib}" if lib else "")
+        detail = f"still running after {res.duration_s:.0f} s (wall clock)" + (f"; innermost frame {lib}" if lib else "")
     elif cls == "TRACEBACK":
         frames, exc = last_traceback(both)
         etype = exc.split(":")[0].rsplit(".", 1)[-1] if exc else "Traceback"

@@ -5,14 +5,18 @@ outputs go to ``out/``), so nothing leaks into the checkout.  The child is the p
 console-script entry point (read from ``pyproject.toml``) started by a small bootstrap that
 
 * puts the source tree under test first on ``sys.path`` (so a snapshot can be fuzzed),
-* limits address space and file size (a 1e9-element model must fail, not swap the machine), and
-* registers ``faulthandler`` on SIGUSR1, so a run over its limit dumps its stack before it is killed.
+* limits address space, file size (a 1e9-element model must fail, not swap the machine) and CPU time
+  (the run's limit: a loaded machine slows a run down, it does not make it a "hang"; a wall-clock
+  ceiling of ``wall_factor`` x the limit catches a run that waits without computing), and
+* registers ``faulthandler`` on SIGUSR1 and SIGXCPU, so a run over its limit dumps its stack before it
+  is killed.
 
 BLAS/OpenMP run single-threaded; the child is its own process group, killed whole at the end.
 """
 from __future__ import annotations
 
 import json
+import math
 import os
 import shlex
 import shutil
@@ -28,6 +32,7 @@ from pathlib import Path
 from .mutate import FILE_SUFFIX, Mutation, SECONDARY_OUTPUTS
 
 MEMORY_LIMIT = 4 << 30      # bytes of address space per run
+WALL_FACTOR = 5.0           # wall-clock ceiling of a run, in units of its CPU-time limit
 FILE_SIZE_LIMIT = 1 << 30   # bytes per file written
 TEXT_CAP = 1 << 20          # characters of stdout / stderr kept per run (head and tail beyond that)
 JSON_CAP = 200 << 20        # bytes of a JSON file read back (larger ones are reported, not parsed)
@@ -35,10 +40,14 @@ JSON_CAP = 200 << 20        # bytes of a JSON file read back (larger ones are re
 _BOOT = """\
 import faulthandler, os, resource, signal, sys
 faulthandler.register(signal.SIGUSR1, all_threads=True)
+faulthandler.register(signal.SIGXCPU, all_threads=True)
 for lim, env in ((resource.RLIMIT_AS, "DRIVEFEM_FUZZ_MEMORY"), (resource.RLIMIT_FSIZE, "DRIVEFEM_FUZZ_FSIZE")):
     v = int(os.environ.get(env, "0"))
     if v:
         resource.setrlimit(lim, (v, v))
+cpu = int(os.environ.get("DRIVEFEM_FUZZ_CPU", "0"))
+if cpu:
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 2))
 resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
 sys.path.insert(0, os.environ["DRIVEFEM_FUZZ_ROOT"])
 sys.argv[0] = "drivefem"
@@ -85,11 +94,12 @@ class Runner:
     """Runs jobs for one source tree ``root`` with ``python`` and a per-run ``limit_s``."""
 
     def __init__(self, root: Path, work: Path, limit_s: float = 60.0, python: str = sys.executable,
-                 memory_limit: int = MEMORY_LIMIT, fork: bool = True):
+                 memory_limit: int = MEMORY_LIMIT, fork: bool = True, wall_factor: float = WALL_FACTOR):
         self.root = Path(root).resolve()
         self.work = Path(work)
         self.work.mkdir(parents=True, exist_ok=True)
-        self.limit_s = limit_s
+        self.limit_s = limit_s                     # CPU seconds of one run
+        self.wall_s = limit_s * wall_factor        # wall-clock ceiling of one run
         self.python = python
         self.module, self.func = entry_point(self.root)
         self.boot = _BOOT.format(module=self.module, func=self.func)
@@ -97,7 +107,8 @@ class Runner:
                         DRIVEFEM_FUZZ_FSIZE=str(FILE_SIZE_LIMIT), OPENBLAS_NUM_THREADS="1",
                         OMP_NUM_THREADS="1", MKL_NUM_THREADS="1", MPLBACKEND="Agg",
                         PYVISTA_OFF_SCREEN="true", VTK_DEFAULT_OPENGL_WINDOW="vtkOSOpenGLRenderWindow",
-                        PYTHONFAULTHANDLER="1", PYTHONDONTWRITEBYTECODE="1", PYTHONIOENCODING="utf-8")
+                        PYTHONFAULTHANDLER="1", PYTHONDONTWRITEBYTECODE="1", PYTHONIOENCODING="utf-8",
+                        DRIVEFEM_FUZZ_CPU=str(int(math.ceil(limit_s))))
         self.env.pop("PYTHONPATH", None)
         self._chattr = shutil.which("chattr") if os.geteuid() == 0 else None
         self._active: set[subprocess.Popen] = set()
@@ -143,7 +154,8 @@ class Runner:
     def _run_forked(self, run_dir: Path, argv: list[str]) -> tuple[int | None, bool]:
         """(exit code, timed out) of one run forked from this thread's fork server."""
         srv = self._server()
-        srv.stdin.write(json.dumps({"dir": str(run_dir), "argv": argv, "limit": self.limit_s}) + "\n")
+        srv.stdin.write(json.dumps({"dir": str(run_dir), "argv": argv, "limit": self.limit_s,
+                                    "wall": self.wall_s}) + "\n")
         line = srv.stdout.readline()
         if not line:                       # the server died (killed by a Ctrl-C of the fuzzer)
             if self.stopped:
@@ -276,7 +288,9 @@ class Runner:
                     self._active.add(proc)
                 timed_out = False
                 try:
-                    rc = proc.wait(timeout=self.limit_s)
+                    rc = proc.wait(timeout=self.wall_s)
+                    if rc in (-signal.SIGKILL, -signal.SIGXCPU) and b"Current thread" in err_f.read_bytes():
+                        timed_out, rc = True, None       # out of CPU time (RLIMIT_CPU; SIGXCPU dumped the stack)
                 except subprocess.TimeoutExpired:
                     timed_out = True
                     _signal(proc.pid, signal.SIGUSR1)      # faulthandler: where is it stuck?
