@@ -116,7 +116,7 @@ def check_time_integration(t_end: float, omega_max: float, steps_per_period: int
         return                            # fixed step: checked from dt
     steps = t_end * omega_max * steps_per_period / (2 * math.pi)
     check_count("[simulation]", "t_end", steps, MAX_TIME_STEPS,
-                f"steps ({steps_per_period} per period of the fastest motion {omega_max:.3g} rad/s of the "
+                f"steps ({steps_per_period} per period of the highest frequency or fastest rate {omega_max:.3g} rad/s of the "
                 "model: stiff elements, small inertias, strong dampers or short motor time constants shorten it)",
                 t_end)
     # every step end is recorded (the event-driven solver keeps the state at each step; DOP853 its steps)
