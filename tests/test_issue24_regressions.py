@@ -328,7 +328,7 @@ def test_13_budget_counts_harmonics_times_dofs(tmp_path, capsys):
                          ids=["omega0", "T"])
 def test_14_motor_time_scales_are_counted_by_the_step_budget(tmp_path, capsys, sub):
     m = _edit(tmp_path, "motor_runup.toml", sub)
-    _refused(capsys, ["simulate", m], "[simulation]", "t_end", "fastest motion", "motor time constants")
+    _refused(capsys, ["simulate", m], "[simulation]", "t_end", "fastest rate", "motor time constants")
 
 
 def test_14_motor_rate_is_the_root_of_the_book(tmp_path):

@@ -517,6 +517,9 @@ def backbone(model: HBModel, A: float, omega0: float, X0=None, tol=1e-12, maxit=
         s.C = C_save
 
 
+START_EVALUATIONS = 500_000     # right-hand sides of the time integration that starts HB (then a solver failure)
+
+
 def time_guess(model: HBModel, omega, periods: int = 60, y0=None):
     """Starting coefficients from time integration of the same (smooth/penalty) model: ``periods``
     forcing periods from rest (or y0) with DOP853, then the last period projected on the harmonics."""
@@ -525,7 +528,18 @@ def time_guess(model: HBModel, omega, periods: int = 60, y0=None):
     s = model.s
     n = s.n
     T = 2 * np.pi * model.nu / omega
-    fun = s.ode(omega)
+    ode = s.ode(omega)
+    calls = [0]
+
+    def fun(t, y):           # the stiffness at the amplitude reached is not known beforehand: count the work
+        calls[0] += 1
+        if calls[0] > START_EVALUATIONS:
+            raise SolverError(f"the time integration for the start used its {START_EVALUATIONS} right-hand-side "
+                              f"evaluations at t = {t:.6g} s of {periods} periods: the model is too stiff for "
+                              "DOP853 at the amplitude reached (a huge stiffness or nonlinear coefficient, a tiny "
+                              "inertia)")
+        return ode(t, y)
+
     y = np.zeros(2 * n) if y0 is None else np.asarray(y0, float)
     t1 = (periods - 1) * T
     sol = solve_ivp(fun, (0.0, t1), y, method="DOP853", rtol=1e-8, atol=1e-12, max_step=T / 32)

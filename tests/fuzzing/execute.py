@@ -278,6 +278,8 @@ class Runner:
                 if self.stopped:
                     raise KeyboardInterrupt
                 rc, timed_out = self._run_forked(run_dir, argv)
+                if rc in (-signal.SIGKILL, -signal.SIGXCPU) and _dumped(err_f):
+                    rc, timed_out = None, True      # killed at its CPU-time limit after the SIGXCPU stack dump
                 return self._collect(job, argv, setup, run_dir, rc, timed_out, time.monotonic() - t0)
             with open(out_f, "wb") as fo, open(err_f, "wb") as fe:
                 with self._lock:
@@ -289,7 +291,7 @@ class Runner:
                 timed_out = False
                 try:
                     rc = proc.wait(timeout=self.wall_s)
-                    if rc in (-signal.SIGKILL, -signal.SIGXCPU) and b"Current thread" in err_f.read_bytes():
+                    if rc in (-signal.SIGKILL, -signal.SIGXCPU) and _dumped(err_f):
                         timed_out, rc = True, None       # out of CPU time (RLIMIT_CPU; SIGXCPU dumped the stack)
                 except subprocess.TimeoutExpired:
                     timed_out = True
@@ -333,6 +335,14 @@ class Runner:
         if "chattr +i" in line:
             line += "; chattr -i out/readonly"
         return line
+
+
+def _dumped(err_f: Path) -> bool:
+    """Whether the run's stderr holds a faulthandler stack dump (written at SIGXCPU or SIGUSR1)."""
+    try:
+        return b"(most recent call first)" in err_f.read_bytes()
+    except OSError:
+        return False
 
 
 def _tail(data: bytes) -> str:
