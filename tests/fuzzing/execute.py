@@ -47,7 +47,7 @@ for lim, env in ((resource.RLIMIT_AS, "DRIVEFEM_FUZZ_MEMORY"), (resource.RLIMIT_
         resource.setrlimit(lim, (v, v))
 cpu = int(os.environ.get("DRIVEFEM_FUZZ_CPU", "0"))
 if cpu:
-    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 2))
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
 resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
 sys.path.insert(0, os.environ["DRIVEFEM_FUZZ_ROOT"])
 sys.argv[0] = "drivefem"

@@ -43,7 +43,7 @@ def _limits(cpu: float | None = None) -> None:
         resource.setrlimit(resource.RLIMIT_CPU, (soft, soft + CPU_GRACE))
 
 
-CPU_GRACE = 2          # seconds of CPU between the stack dump (SIGXCPU) and the kernel's kill
+CPU_GRACE = 1          # seconds of CPU between the stack dump (SIGXCPU) and the kernel's kill
 
 
 def _child(run_dir: str, argv: list, module: str, func: str, cpu: float | None = None) -> None:
