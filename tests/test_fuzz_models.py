@@ -159,11 +159,13 @@ def test_fuzz_fast_sample(tmp_path):
 def test_fuzz_slow_3000(tmp_path):
     """Slow tier: 3000 stratified mutated files plus the budget slice (1e+-300 and 1e9 in the keys that set
     the work: ~415 more) through every applicable command (render on a quarter of the FE files, a
-    wrong-kind command on a tenth, CSV/plot outputs on a tenth of the runs), plus the examples as shipped."""
+    wrong-kind command on a tenth, CSV/plot outputs on a tenth of the runs), plus the examples as shipped:
+    about 8000 runs, among them the extreme values, option and output-path attacks of issue 24."""
     examples = load_examples(ROOT)
     muts = slow_sample(examples, 3000)
     jobs = plan(controls(examples) + muts, examples, extras_every=10)
     run = execute(jobs, limit_s=SLOW_LIMIT_S, out_dir=_out_dir(tmp_path, "fuzz-slow"), progress=True)
     print(run.summary())
     assert len({o.id for o in run.outcomes if o.category != "control"}) >= 3000
+    assert len(run.outcomes) >= 5000          # issue 24: >= 5000 runs (every command each kind accepts)
     _assert_properties(run)
