@@ -337,3 +337,18 @@ def test_14_motor_rate_is_the_root_of_the_book(tmp_path):
 
     p = Study.load(EX / "motor_runup.toml").problem_spec(0.6).problem()
     assert p.omega_max == 0.0 and p.rate_max == pytest.approx(132.665, rel=1e-5)
+
+
+# ------------------------------------------------------------------ neighbours found while fuzzing
+@pytest.mark.parametrize("command", ["modal", "forced", "compare"])
+def test_free_free_drive_in_the_continuum_representation(tmp_path, capsys, command):
+    """A free-free drive whose pseudo-medium is built (continuum representation, and compare always): the rigid
+    mechanisms' flag was overwritten by an empty array before its use (exit 70).  compare's relative deviation of
+    the rigid-body root (0 against 0) is null, not a division by zero."""
+    m = _edit(tmp_path, "drive_forced.toml", (r'^boundary = "clamped-free"', 'boundary = "free-free"'),
+              (r'^representation = .*', 'representation = "continuum"'), (r"^omega_rad_s = .*", "omega_rad_s = [50.0]"))
+    rc, out, err = _run(capsys, [command, m, "--json", tmp_path / "o.json"])
+    assert rc == 0 and "internal error" not in err, err[-500:]
+    if command == "compare":
+        conv = json.loads((tmp_path / "o.json").read_text())["convergence"]
+        assert all(v is None or math.isfinite(v) for row in conv["lower_rel_dev"] for v in row)

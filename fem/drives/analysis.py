@@ -384,7 +384,10 @@ class DriveComparison:
 
     @property
     def convergence_rel(self) -> tuple[np.ndarray, np.ndarray]:
-        return (self.convergence_lower / self.continuum_lower - 1, self.convergence_upper / self.continuum_upper - 1)
+        """Relative deviations of the discrete roots from the continuum's (NaN for a rigid-body root, 0 in both)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return (np.where(self.continuum_lower != 0, self.convergence_lower / self.continuum_lower - 1, np.nan),
+                    np.where(self.continuum_upper != 0, self.convergence_upper / self.continuum_upper - 1, np.nan))
 
     @property
     def observed_order(self) -> np.ndarray:
@@ -403,7 +406,7 @@ class DriveComparison:
                                 "upper_rad_s": self.convergence_upper.tolist(),
                                 "continuum_lower_rad_s": self.continuum_lower.tolist(),
                                 "continuum_upper_rad_s": self.continuum_upper.tolist(),
-                                "lower_rel_dev": lo_rel.tolist(), "upper_rel_dev": hi_rel.tolist(),
+                                "lower_rel_dev": [nan(r) for r in lo_rel], "upper_rel_dev": [nan(r) for r in hi_rel],
                                 "observed_order_r1": [nan(r) for r in self.observed_order]},
                 # the modal JSON keys for the drive's own discrete model
                 "omega_rad_s": nan(np.sort(np.concatenate(self.rows["discrete"]))),
