@@ -443,7 +443,10 @@ def compare_model(model: DriveModel, *, R: int = 3, convergence_n=None) -> Drive
     if reg is not None and reg.output == "free":
         allf = reg.natural_frequencies()
         rows["closed form (10.36)+(10.16)"] = _branches(allf, model.mechanism.k, R)
-    c_lo, c_hi = continuum_roots(model, R)
+    free = model.boundary == "free-free"
+    c_lo, c_hi = continuum_roots(model, R + free)
+    if free:         # its rigid-body root 0 is no branch root of the other representations (_branches drops it)
+        c_lo, c_hi = c_lo[c_lo > 0][:R], c_hi[:R]
     rows["pseudo-medium (10.50)"] = (c_lo, c_hi)
     if convergence_n is None:
         convergence_n = [model.n * 2**i for i in range(5)]
