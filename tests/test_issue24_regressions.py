@@ -355,3 +355,13 @@ def test_free_free_drive_in_the_continuum_representation(tmp_path, capsys, comma
         dev = [row[0] for row in conv["lower_rel_dev"]]
         assert conv["continuum_lower_rad_s"][0] > 0 and all(abs(v) < 0.1 for v in dev) and abs(dev[-1]) < 5e-3
         assert all(abs(b) < abs(a) for a, b in zip(dev, dev[1:]))       # n doubled: closer to the pseudo-medium
+
+
+@pytest.mark.parametrize("command", ["modal", "forced", "simulate"])
+def test_lumped_file_without_bodies_is_bad_input_for_every_command(tmp_path, capsys, command):
+    """``body = []`` (or every [[body]] deleted): simulate said so, modal crashed building a 0 x 0 system (exit 70);
+    the check is made once where the lumped model is built (found by running modal on the nonsmooth examples)."""
+    m = _edit(tmp_path, "motor_runup.toml", (r'^\[\[body\]\]\nname = "rotor"\ninertia = 0.05\n', "body = []\n"))
+    if command == "forced":
+        m.write_text(m.read_text() + '\n[analysis]\ntype = "forced"\nomega_rad_s = [1.0]\n')
+    _refused(capsys, [command, m], "body", "at least one [[body]] table")
