@@ -14,6 +14,7 @@ EXAMPLES = ROOT / "examples"
 CASES = ROOT / "validation" / "cases"
 
 PINNED = {
+    "ross_compressor.toml": ["rotor-ross-compressor"],
     "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown"],
     "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown"],
     "hybrid_sweep_vibro_impact.toml": ["hybrid_afc_vibro_impact"],

@@ -24,14 +24,14 @@ from .assembly import RotorSystem, assemble_rotor
 from .campbell import CampbellResult, CriticalSpeed, campbell, critical_speeds
 from .critical_map import CriticalSpeedMap, UndampedCriticalSpeeds, critical_speed_map, undamped_critical_speeds
 from .modal import RotorModes, rotor_modes
-from .model import Bearing, Coupling, Disc, Pedestal, Rotor, ShaftSegment, Support, Unbalance, rpm, to_rpm
+from .model import Bearing, Coupling, Disc, Layer, Pedestal, Rotor, ShaftSegment, Support, Unbalance, rpm, to_rpm
 from .runup import Rub, RunUp, RunUpResult, run_up
 from .response import Probe, UnbalanceResponse, required_margin, unbalance_response
 from .stability import StabilityResult, stability_threshold
 from .static import PointLoad, StaticResult, static_deflection
 from .whirl import Orbits, mac
 
-__all__ = ["Rotor", "ShaftSegment", "Disc", "Bearing", "Pedestal", "Coupling", "Support", "Unbalance", "rpm", "to_rpm",
+__all__ = ["Rotor", "ShaftSegment", "Layer", "Disc", "Bearing", "Pedestal", "Coupling", "Support", "Unbalance", "rpm", "to_rpm",
            "RotorSystem", "assemble_rotor", "RotorModes", "rotor_modes", "CampbellResult", "CriticalSpeed", "campbell",
            "critical_speeds", "UndampedCriticalSpeeds", "undamped_critical_speeds", "CriticalSpeedMap",
            "critical_speed_map", "Probe", "UnbalanceResponse", "unbalance_response", "required_margin",

@@ -63,14 +63,8 @@ class ReducedRotor:
     def coefficients(self, speed: float) -> np.ndarray:
         """The tabulated bearings' coefficients at a speed (interpolants built once; the ramp's range
         is checked against the tables before a run)."""
-        if self._interpolants is None:
-            from scipy.interpolate import PchipInterpolator
-
-            self._interpolants = [PchipInterpolator(t.grid, t.values, axis=1) if t.interpolation == "pchip"
-                                  else (lambda s, t=t: np.array([np.interp(s, t.grid, v) for v in t.values]))
-                                  for t in self.system.tables]
         s = float(speed)
-        return np.concatenate([f(s) for f in self._interpolants])
+        return np.concatenate([t.values_at(s)[0] for t in self.system.tables])
 
     def matrices(self, speed: float) -> tuple[np.ndarray, np.ndarray]:
         """(K(Omega), C(Omega) + Omega G) of the reduced rotor."""
@@ -88,8 +82,9 @@ class ReducedRotor:
             return np.zeros_like(self.K0)
         g = self.system.tables[0].grid
         h = 1e-6 * max(abs(speed), float(g[-1] - g[0]))
-        lo, hi = max(speed - h, float(max(t.grid[0] for t in self.system.tables))), \
-            min(speed + h, float(min(t.grid[-1] for t in self.system.tables)))
+        strict = [t for t in self.system.tables if t.extrapolate == "refuse"]     # the others extend past their ends
+        lo = max([speed - h] + [float(t.grid[0]) for t in strict])
+        hi = min([speed + h] + [float(t.grid[-1]) for t in strict])
         dc = (self.coefficients(hi) - self.coefficients(lo)) / (hi - lo)
         return np.tensordot(dc, self.Kc, 1) * acceleration
 

@@ -181,7 +181,7 @@ def _outer_diameter(rs: RotorSystem, x: float) -> float:
         x1 = x0 + s.length
         if x0 - 1e-12 <= x <= x1 + 1e-12:
             u = min(max((x - x0) / s.length, 0.0), 1.0)
-            best = max(best, s.d + (s.outer_end - s.d) * u)
+            best = max(best, s.outer_diameter(u))
         x0 = x1
     return best
 

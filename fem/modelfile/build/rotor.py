@@ -14,8 +14,8 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ...rotor.model import (BEARING_COEFFICIENTS, Bearing, Coupling, Disc, Pedestal, Rotor, ShaftSegment, Support,
-                            Unbalance)
+from ...rotor.model import (BEARING_COEFFICIENTS, Bearing, Coupling, Disc, Layer, Pedestal, Rotor, ShaftSegment,
+                            Support, Unbalance)
 from ...rotor.response import Probe
 from ...sections import Material
 from .. import budget
@@ -57,7 +57,8 @@ def _disc(d, rho_default: float | None, where: str) -> Disc:
 def _bearing(b) -> Bearing:
     speeds = b.speeds if b.speeds_rpm is None else [v * RPM for v in b.speeds_rpm]
     coeff = {k: getattr(b, k) for k in BEARING_COEFFICIENTS}
-    return Bearing(x=b.x, speeds=speeds, interpolation=b.interpolation, k_axial=b.k_axial, c_axial=b.c_axial,
+    return Bearing(x=b.x, speeds=speeds, interpolation=b.interpolation, extrapolate=b.extrapolate,
+                   k_axial=b.k_axial, c_axial=b.c_axial,
                    pedestal=b.pedestal, name=b.name, **coeff)
 
 
@@ -74,7 +75,11 @@ def rotor_model(doc) -> Rotor:
         segments.append(ShaftSegment(length=s.length, elements=s.elements, d=s.d, d_end=s.d_end, di=s.di,
                                      di_end=s.di_end, material=_material(r.material, s.material, where),
                                      shear_coefficient=s.shear_coefficient,
-                                     added_mass_per_length=s.added_mass_per_length))
+                                     added_mass_per_length=s.added_mass_per_length,
+                                     layers=[Layer(d=q.d, di=q.di, d_end=q.d_end, di_end=q.di_end,
+                                                   material=_material(r.material, q.material, f"{where} layer #{j}"),
+                                                   shear_coefficient=q.shear_coefficient, mass_only=q.mass_only)
+                                             for j, q in enumerate(s.layer, 1)]))
     rho = r.material.rho if r.material is not None else None
     discs = [_disc(d, rho, f"[[rotor.disc]] #{i}") for i, d in enumerate(r.disc, 1)]
     return Rotor(segments=segments, discs=discs, bearings=[_bearing(b) for b in r.bearing],

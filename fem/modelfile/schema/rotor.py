@@ -67,6 +67,28 @@ class RotorMaterial(Table):
         return self
 
 
+class RotorLayer(Table):
+    """``[[rotor.segment.layer]]``: a further concentric layer of the segment (a sleeve, an impeller
+    hub, a shrink fit) on the same nodes: its own annulus and material, its own Timoshenko element
+    (own shear parameter Phi; ROSS's convention: shaft elements at one node number are summed).
+    ``mass_only = true``: inertia only (translational, rotary and polar), no stiffness."""
+
+    d: Positive
+    """Outer diameter at the segment's start, m."""
+    di: NonNegative
+    """Bore at the start, m (e.g. the segment's d for a sleeve on the shaft; layers must not overlap)."""
+    d_end: Positive | None = None
+    """Outer diameter at the end, m (default: d)."""
+    di_end: NonNegative | None = None
+    """Bore at the end, m (default: di)."""
+    material: RotorMaterial | None = None
+    """Override of [rotor.material] for this layer (E and G also set its Phi when mass_only)."""
+    shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    """Timoshenko shear coefficient of the layer (default: Cowper's value for its annulus)."""
+    mass_only: bool = False
+    """True: the layer adds mass, rotary and polar inertia but no stiffness (a shrunk-on impeller, a sleeve)."""
+
+
 class RotorSegment(Table):
     """``[[rotor.segment]]``: a piece of shaft, consecutive along x from x = 0, divided into equal
     Timoshenko elements (shear, rotary inertia, gyroscopic matrices); linear taper when d_end or
@@ -89,7 +111,9 @@ class RotorSegment(Table):
     shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
     """Timoshenko shear coefficient kappa (default: Cowper's value for the hollow circle)."""
     added_mass_per_length: NonNegative = 0.0
-    """Non-structural mass carried by the segment, kg/m (no stiffness)."""
+    """Non-structural mass carried by the segment, kg/m (translational inertia only, no stiffness)."""
+    layer: Annotated[list[RotorLayer], Field(default_factory=list)]
+    """[[rotor.segment.layer]]: further concentric layers (own material; mass_only for inertia without stiffness)."""
 
 
 class RotorDisc(Table):
@@ -132,19 +156,20 @@ class RotorDisc(Table):
 class RotorBearing(Table):
     """``[[rotor.bearing]]``: a linear bearing or seal on (v, w) of a shaft node: force on the shaft
     f = -K d - C d', K = [[kyy, kyz], [kzy, kzz]], C = [[cyy, cyz], [czy, czz]].  Each coefficient is
-    a number or a list over ``speeds``/``speeds_rpm`` (interpolated, never extrapolated); direct
-    coefficients must be >= 0 and not all zero, cross-coupled ones may have any sign."""
+    a number or a list over ``speeds``/``speeds_rpm`` (interpolated; outside the table as
+    ``extrapolate`` says).  Stiffness may have any sign (seals); the damping's symmetric part must be
+    positive semidefinite (cyy, czz >= 0, cyy czz >= ((cyz + czy)/2)^2); some direct coefficient != 0."""
 
     x: float
     """Position along the shaft, m (a node)."""
     kyy: Coefficient = 0.0
-    """Direct stiffness in y, N/m (>= 0)."""
+    """Direct stiffness in y, N/m (any sign: a seal's may be negative)."""
     kyz: Coefficient = 0.0
     """Cross-coupled stiffness, N/m (force in y per displacement in z)."""
     kzy: Coefficient = 0.0
     """Cross-coupled stiffness, N/m (force in z per displacement in y)."""
     kzz: Coefficient = 0.0
-    """Direct stiffness in z, N/m (>= 0)."""
+    """Direct stiffness in z, N/m (any sign)."""
     cyy: Coefficient = 0.0
     """Direct damping in y, N s/m (>= 0)."""
     cyz: Coefficient = 0.0
@@ -157,8 +182,12 @@ class RotorBearing(Table):
     """Speeds of a coefficient table, rad/s, increasing."""
     speeds_rpm: Annotated[list[NonNegative], Field(min_length=2)] | None = None
     """Speeds of a coefficient table, rev/min, increasing (or give speeds)."""
-    interpolation: Literal["linear", "pchip"] = "linear"
-    """Interpolation of a table between its speeds (pchip: shape-preserving cubic)."""
+    interpolation: Literal["linear", "pchip", "spline"] = "linear"
+    """Interpolation of a table between its speeds (pchip: shape-preserving cubic; spline: cubic spline
+    through the points, not-a-knot ends)."""
+    extrapolate: Literal["refuse", "hold", "linear"] = "refuse"
+    """A speed outside the table: refuse (an error), hold (the end values) or linear (the interpolant's
+    tangent line at the table's end); hold and linear warn, naming the bearing and the speeds."""
     k_axial: NonNegative = 0.0
     """Thrust-bearing stiffness on u, N/m (dofs = "full" only)."""
     c_axial: NonNegative = 0.0
