@@ -265,7 +265,9 @@ def hybrid_states(study, res) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Full FE q, q', q'' (n_fe, n_samples) at the samples of a hybrid result.  The accelerations come from
     the solved system's equations of motion at each record: M a = f(t) + sum g_i F_i - C v - K x on the free
     DOFs with the recorded element forces F_i (constraint forces in stick and persistent contact; the
-    Moreau-Jean scheme records each step's mean impulse / dt) and the drivers' prescribed accelerations."""
+    Moreau-Jean scheme records each step's mean impulse / dt) and the drivers' prescribed accelerations.  The
+    regularised integrator records no element forces: its accelerations are the recorded velocities
+    differentiated (second order, central), which its smooth solution allows."""
     import scipy.sparse as sp
     import scipy.sparse.linalg as spla
 
@@ -274,6 +276,10 @@ def hybrid_states(study, res) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     idx = res.sample_index if res.sample_index is not None else np.searchsorted(sol.t, res.t)
     system = comp.system
     x, v, t = sol.x[:, idx], sol.v[:, idx], sol.t[idx]
+    T, n_fe = comp.T, comp.n_fe
+    if comp.elements and sol.element_forces is None:     # the regularised integrator records no element forces
+        a = np.gradient(sol.v, sol.t, axis=1, edge_order=2)[:, idx] if sol.t.size > 2 else np.zeros_like(v)
+        return np.asarray(T @ x[:n_fe]), np.asarray(T @ v[:n_fe]), np.asarray(T @ a[:n_fe])
     n = system.n_dofs
     a = np.zeros_like(x)
     for j, law in comp.drivers.items():
@@ -288,9 +294,7 @@ def hybrid_states(study, res) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     M = sp.csr_matrix(system.M)
     rhs_f = rhs[f] - (M[f][:, c] @ a[c] if c.size else 0.0)
     a[f] = spla.splu(sp.csc_matrix(M[f][:, f])).solve(np.asarray(rhs_f, dtype=float)).reshape(f.size, -1)
-    T = comp.T
-    n_fe = comp.n_fe
-    return (np.asarray(T @ x[:n_fe]), np.asarray(T @ v[:n_fe]), np.asarray(T @ a[:n_fe]))
+    return np.asarray(T @ x[:n_fe]), np.asarray(T @ v[:n_fe]), np.asarray(T @ a[:n_fe])
 
 
 def hybrid_loads(study, res) -> StudyLoads:
@@ -334,6 +338,9 @@ def hybrid_loads(study, res) -> StudyLoads:
                 C = sys_.C + alpha * sys_.M + beta * sys_.K
                 reactions[lab] = (sys_.K @ q + C @ qd + sys_.M @ qdd)[int(j)]
         reactions = {(("driver " + k) if k in drv else k): v for k, v in reactions.items()}
+    if comp.elements and res.solver.element_forces is None:
+        notes.append("accelerations from the recorded velocities (the regularised integrator records no element "
+                     "forces): the inertia part is accurate to the sampling of the run")
     if comp.reduced is not None:
         notes.append(f"reduced FE part ({comp.reduced.T.shape[1]} coordinates): the field is the reduction's "
                      "expansion, so nodal equilibrium holds in the projected sense (exact for the full model)")
