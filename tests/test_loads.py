@@ -142,12 +142,22 @@ def test_public_api_shapes_units_sides_and_dict():
                                         (dict(omega=1.0, eigenvalue=1j), "eigenvalue"),
                                         (dict(omega=1.0, qd=0), "qd"), (dict(omega=-1.0), "omega"),
                                         (dict(x=5.0), "x"), (dict(x=0.5, side="up"), "side"),
-                                        (dict(speed=10.0), "speed"), (dict(omega=[1.0, 2.0, 3.0]), "omega")])
+                                        (dict(speed=10.0), "speed"), (dict(omega=[1.0, 2.0, 3.0]), "omega"),
+                                        (dict(x="middle"), "x")])
 def test_bad_arguments_are_model_errors_naming_the_key(kwargs, key):
     fe = _shaft("torsion", "euler-bernoulli", 1, "consistent")
     q = kwargs.pop("q", np.zeros(fe.system.n_dofs))
     with pytest.raises(ModelError) as err:
         section_loads(fe, q, **kwargs)
+    assert err.value.key == key
+
+
+@pytest.mark.parametrize("kwargs,key", [(dict(speed="fast"), "speed"), (dict(speed=-1.0), "speed"),
+                                        (dict(gravity=(0, "down")), "gravity"), (dict(gravity=(0, 0)), "gravity")])
+def test_bad_rotor_arguments_are_model_errors(kwargs, key):
+    rs = Study.load(EX / "rotor_friswell_damped.toml").rotor
+    with pytest.raises(ModelError) as err:
+        rotor_section_loads(rs, np.zeros(rs.n_dofs), **kwargs)
     assert err.value.key == key
 
 
@@ -194,14 +204,14 @@ def test_modal_json_has_load_shapes_per_mode(tmp_path):
     s = d["section_loads"]
     assert s["kind"] == "modal" and s["quantities"] == ["bending_moment", "shear_force"]
     assert np.array(s["values"]["bending_moment"]).shape == (len(s["x"]), d["n_modes"])
-    assert np.allclose(s["eigenvalues"], d["omega_rad_s_unverified"])
+    assert np.allclose(s["omega_rad_s"], d["omega_rad_s_unverified"]) and "eigenvalues" not in s
     assert "mass-normalised" in s["normalisation"]
     # at the free end only the tip mass (11.56 kg) acts on the last element: V(L-) = m omega^2 w_tip per mode
     xs = d["mode_shapes"]["w"]["x"]
     for r in range(d["n_modes"]):
         w_tip = d["mode_shapes"]["w"]["modes"][r][xs.index(max(xs))]
         V = s["values"]["shear_force"][-1][r]
-        assert s["side"][-1] == "left" and abs(V - 11.56 * s["eigenvalues"][r] ** 2 * w_tip) <= 1e-8 * abs(V)
+        assert s["side"][-1] == "left" and abs(V - 11.56 * s["omega_rad_s"][r] ** 2 * w_tip) <= 1e-8 * abs(V)
 
 
 def test_forced_json_has_complex_loads_and_reactions_per_frequency(tmp_path):

@@ -94,7 +94,10 @@ def _stations(es: ElementSet, x, side: str):
         raise ModelError(WHERE, "side", side, " | ".join(map(repr, SIDES)))
     if x is None:
         return element_end_stations(es)
-    xs = np.atleast_1d(np.asarray(x, dtype=float))
+    try:
+        xs = np.atleast_1d(np.asarray(x, dtype=float))
+    except (TypeError, ValueError):
+        xs = np.zeros((0,))
     if xs.ndim != 1 or xs.size == 0:
         raise ModelError(WHERE, "x", x, "a station or a list of stations along the shaft (m)")
     located = [es.locate(float(v), side) for v in xs]
@@ -133,6 +136,9 @@ def section_loads(fe_model, q, *, qd=None, qdd=None, omega=None, x=None, eigenva
     from ..rotor.assembly import RotorSystem
 
     if isinstance(fe_model, RotorSystem):
+        if damping is not None:
+            raise ModelError(WHERE, "damping", damping, "None for a rotor (its damping is in its bearings, seals and "
+                             "couplings)")
         return rotor_section_loads(fe_model, q, qd=qd, qdd=qdd, omega=omega, x=x, eigenvalue=eigenvalue,
                                    side=side, speed=speed, gravity=gravity)
     for key, value in (("speed", speed), ("gravity", gravity)):
@@ -158,8 +164,10 @@ def rotor_section_loads(rotor_system, q, *, qd=None, qdd=None, omega=None, x=Non
     mo = motion(es.n_dofs, q, qd, qdd, omega, eigenvalue)
     if speed is None:
         speed = mo.parameter.real if mo.kind == "harmonic" else 0.0
-    spin = np.broadcast_to(np.asarray(speed, dtype=float), (mo.q.shape[1],)) if np.ndim(speed) <= 1 and \
-        np.size(speed) in (1, mo.q.shape[1]) else None
+    try:
+        spin = np.broadcast_to(np.asarray(speed, dtype=float), (mo.q.shape[1],))
+    except (TypeError, ValueError):
+        spin = None
     if spin is None or not np.all(np.isfinite(spin)) or np.any(spin < 0):
         raise ModelError(WHERE, "speed", speed, "a spin speed >= 0 (rad/s), one or one per column of q")
     load = None if gravity is None else _gravity(gravity)
@@ -167,7 +175,10 @@ def rotor_section_loads(rotor_system, q, *, qd=None, qdd=None, omega=None, x=Non
 
 
 def _gravity(g) -> np.ndarray:
-    arr = np.asarray(g, dtype=float).ravel()
+    try:
+        arr = np.asarray(g, dtype=float).ravel()
+    except (TypeError, ValueError):
+        arr = np.zeros(0)
     if arr.shape != (3,) or not np.all(np.isfinite(arr)):
         raise ModelError(WHERE, "gravity", g, "three finite numbers (g_x, g_y, g_z), m/s^2")
     return arr

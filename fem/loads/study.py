@@ -47,28 +47,29 @@ class StudyLoads:
     notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
+        """The JSON form: complex values for harmonic amplitudes and damped (rotor) modes, real ones for
+        undamped modes (``omega_rad_s``) and time histories."""
         s = self.section
-        values = {k: (v.real if np.iscomplexobj(v) and not np.any(v.imag) else v) for k, v in s.quantities.items()}
+        lam = np.asarray(s.parameter) if s.kind == "modal" else None
+        undamped = lam is not None and not np.any(lam.real) and not any(np.any(np.imag(v)) for v in s.quantities.values())
+        real = s.kind in ("time", "static") or undamped
+        values = {k: (v.real if real else v) for k, v in s.quantities.items()}
         d = {"quantities": list(values), "units": dict(s.units), "kind": s.kind, "stations": self.stations,
              "x": s.x, "side": [str(v) for v in s.side], "values": values, "convention": CONVENTION,
              "normalisation": self.normalisation}
         if s.kind == "harmonic":
             d["omega_rad_s"] = s.parameter
-        elif s.kind == "modal":
-            lam = np.asarray(s.parameter)
-            d["eigenvalues"] = lam.imag if not np.any(lam.real) else lam
+        elif undamped:
+            d["omega_rad_s"] = lam.imag
+        elif lam is not None:
+            d["eigenvalues"] = lam
         if self.t is not None:
             d["t"] = self.t
         labels = list(self.reactions)
         d["reactions"] = {"labels": labels, "units": [_reaction_unit(k) for k in labels],
-                          "values": [_real(self.reactions[k]) for k in labels]}
+                          "values": [np.real(self.reactions[k]) if real else self.reactions[k] for k in labels]}
         d["notes"] = list(dict.fromkeys(list(s.notes) + list(self.notes)))
         return d
-
-
-def _real(v):
-    v = np.asarray(v)
-    return v.real if np.iscomplexobj(v) and not np.any(v.imag) else v
 
 
 def _reaction_unit(label: str) -> str:

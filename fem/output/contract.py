@@ -28,7 +28,8 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   states): the internal loads of the result (docs/loads.md) -- ``quantities`` (names), ``units``,
   ``kind`` (modal | harmonic | time), ``stations`` (which), ``x`` and ``side`` (n_x; "left"/"right": the
   value just left/right of x), ``values`` {quantity: n_x x n_columns} with one column per mode,
-  frequency or time sample (``eigenvalues``, ``omega_rad_s`` or ``t``), ``normalisation`` (modes),
+  frequency or time sample (``omega_rad_s`` of frequencies and undamped modes, complex ``eigenvalues`` of
+  rotor modes, or ``t``), ``normalisation`` (modes),
   ``reactions`` {``labels``, ``units``, ``values``: n_reactions x n_columns}, ``convention``, ``notes``.
 Complex numbers are ``{"re": .., "im": ..}``; no number is NaN or infinite.
 """
