@@ -43,39 +43,46 @@ def element_loss(es: ElementSet, damping: ElementDamping) -> np.ndarray | None:
 
 
 def end_forces(es: ElementSet, mo: Motion, damping: ElementDamping, *, speed: float = 0.0,
-               load: np.ndarray | None = None) -> np.ndarray:
-    """f_e (E, nb, n_t) of the module notes; ``load`` (3,): factors of the element load terms (gravity)."""
-    d = es.dofs
+               load: np.ndarray | None = None, elements: np.ndarray | None = None) -> np.ndarray:
+    """f_e (E, nb, n_t) of the module notes, for every element or the ``elements`` given (in that order);
+    ``load`` (3,): factors of the element load terms (gravity)."""
+    sel = slice(None) if elements is None else np.asarray(elements, dtype=int)
+    d = es.dofs[sel]
     q, qd, qdd = mo.q[d], mo.qd[d], mo.qdd[d]
-    f = _mul(es.K, q)
+    K = es.K[sel]
+    f = _mul(K, q)
     H = element_loss(es, damping)
+    H = None if H is None else H[sel]
+    M = None if es.M is None else es.M[sel]
     if H is not None and mo.loss:
         f = f + mo.loss * _mul(H, q)
     if mo.kind != "static":
         C = 0.0
         if damping.beta:
-            C = damping.beta * es.K
-        if damping.alpha and es.M is not None:
-            C = C + damping.alpha * es.M
+            C = damping.beta * K
+        if damping.alpha and M is not None:
+            C = C + damping.alpha * M
         if H is not None and damping.viscous_loss_omega and not mo.loss:
             C = C + H / damping.viscous_loss_omega
         if not np.isscalar(C):
             f = f + _mul(C, qd)
         spin = np.broadcast_to(np.asarray(speed, dtype=float), (f.shape[2],))
         if es.G is not None and np.any(spin):
-            f = f + _mul(es.G, qd) * spin
-        if es.M is not None:
-            f = f + _mul(es.M, qdd)
+            f = f + _mul(es.G[sel], qd) * spin
+        if M is not None:
+            f = f + _mul(M, qdd)
     if load is not None and es.applied is not None:
-        f = f - (es.applied @ np.asarray(load, float))[:, :, None]
+        f = f - (es.applied[sel] @ np.asarray(load, float))[:, :, None]
     return f
 
 
 def station_values(es: ElementSet, f: np.ndarray, mo: Motion, damping: ElementDamping, element: np.ndarray,
-                   xi: np.ndarray, side: np.ndarray, *, speed: float = 0.0,
-                   load: np.ndarray | None = None) -> dict[str, np.ndarray]:
-    """Every quantity of ``es`` at the stations (element, xi, side) -> {name: (n_x, n_t)}."""
+                   xi: np.ndarray, side: np.ndarray, *, speed: float = 0.0, load: np.ndarray | None = None,
+                   rows: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    """Every quantity of ``es`` at the stations (element, xi, side) -> {name: (n_x, n_t)}; ``rows``: the row
+    of ``f`` that holds each station's element (default: the element index itself)."""
     element = np.asarray(element, dtype=int)
+    rows = element if rows is None else np.asarray(rows, dtype=int)
     xi = np.asarray(xi, dtype=float)
     n_t = f.shape[2]
     out = {name: np.zeros((element.size, n_t), dtype=f.dtype) for name in es.quantities}
@@ -84,17 +91,19 @@ def station_values(es: ElementSet, f: np.ndarray, mo: Motion, damping: ElementDa
         for k in es.local(kind, axis):
             at = (left & (es.xi[k] == 0.0)) | (right & (es.xi[k] == 1.0))
             sgn = np.where(left, -1.0, 1.0)
-            out[name][at] = sgn[at, None] * f[element[at], k]
+            out[name][at] = sgn[at, None] * f[rows[at], k]
     inside = np.flatnonzero(~left & ~right)
     if inside.size:
-        vals = _inside(es, f, mo, damping, element[inside], xi[inside], np.asarray(side)[inside], speed, load)
+        vals = _inside(es, f[rows[inside]], mo, damping, element[inside], xi[inside], np.asarray(side)[inside], speed,
+                       load)
         for name in out:
             out[name][inside] = vals[name]
     return out
 
 
-def _inside(es, f, mo, damping, el, xi, side, speed, load) -> dict[str, np.ndarray]:
-    """Equilibrium of the part [x_a, x] of each element (module notes)."""
+def _inside(es, fe, mo, damping, el, xi, side, speed, load) -> dict[str, np.ndarray]:
+    """Equilibrium of the part [x_a, x] of each element (module notes); ``fe`` (S, nb, T): the end forces of
+    the elements ``el`` of the stations."""
     g, w = gauss(8)
     h = es.length[el]
     t = xi[:, None] * g[None, :]                         # (S, n) points in [0, xi]
@@ -115,7 +124,6 @@ def _inside(es, f, mo, damping, el, xi, side, speed, load) -> dict[str, np.ndarr
             key = (term.kind, term.axis)
             r = -load[term.axis] * term.weight(el, t)[:, :, None]
             density[key] = density.get(key, 0.0) + r
-    fe = f[el]                                            # (S, nb, T)
     xk = es.xi[None, :]
     passed = (xk < xi[:, None]) | ((side == "right")[:, None] & (xk == xi[:, None]))   # (S, nb)
     out = {}
@@ -132,7 +140,7 @@ def _inside(es, f, mo, damping, el, xi, side, speed, load) -> dict[str, np.ndarr
             for k in es.local(FORCE, faxis):
                 lever = (es.xi[k] - xi) * h
                 val = val - sign * (passed[:, k] * lever)[:, None] * fe[:, k]
-        out[name] = val if not np.isscalar(val) else np.zeros((el.size, f.shape[2]), dtype=f.dtype)
+        out[name] = val if not np.isscalar(val) else np.zeros((el.size, fe.shape[2]), dtype=fe.dtype)
     return out
 
 

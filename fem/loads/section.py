@@ -107,9 +107,10 @@ def _stations(es: ElementSet, x, side: str):
 
 def _result(es: ElementSet, mo: Motion, damping: ElementDamping, stations, *, speed=0.0, load=None,
             notes=()) -> SectionLoads:
-    f = end_forces(es, mo, damping, speed=speed, load=load)
     element, xi, side = stations
-    vals = station_values(es, f, mo, damping, element, xi, side, speed=speed, load=load)
+    used, rows = np.unique(element, return_inverse=True)
+    f = end_forces(es, mo, damping, speed=speed, load=load, elements=used)
+    vals = station_values(es, f, mo, damping, element, xi, side, speed=speed, load=load, rows=rows)
     x = es.x0[element] + xi * es.length[element]
     if mo.single:
         vals = {k: v[:, 0] for k, v in vals.items()}

@@ -19,12 +19,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from discrete.errors import ModelError
-
 from .elements import ElementSet
 from .motion import ElementDamping, motion
 from .recovery import end_forces, node_stations, station_values
-from .section import UNITS, SectionLoads, elements_of, rotor_section_loads, section_loads
+from .section import UNITS, SectionLoads, elements_of
 
 #: forced responses: every node while stations x frequencies stays within this (JSON size), else key stations
 NODE_BUDGET = 5_000
@@ -45,6 +43,13 @@ class StudyLoads:
     normalisation: str | None = None
     t: np.ndarray | None = None
     notes: list = field(default_factory=list)
+
+    @property
+    def finite(self) -> bool:
+        """Whether every value and reaction is finite (a model at the edge of double precision may overflow
+        here while its analysis did not)."""
+        arrays = list(self.section.quantities.values()) + [np.asarray(v) for v in self.reactions.values()]
+        return all(np.all(np.isfinite(a)) for a in arrays)
 
     def to_dict(self) -> dict:
         """The JSON form: complex values for harmonic amplitudes and damped (rotor) modes, real ones for
@@ -78,12 +83,6 @@ def _reaction_unit(label: str) -> str:
 
 
 # ------------------------------------------------------------------ stations
-def _subset(sl: SectionLoads, keep: np.ndarray) -> SectionLoads:
-    return SectionLoads(x=sl.x[keep], quantities={k: v[keep] for k, v in sl.quantities.items()}, units=sl.units,
-                        side=sl.side[keep], element=sl.element[keep], kind=sl.kind, parameter=sl.parameter,
-                        notes=sl.notes)
-
-
 def _nearest(xs: np.ndarray, marks) -> np.ndarray:
     """Stations whose x is the node nearest to one of the marks."""
     keep = np.zeros(xs.size, dtype=bool)
@@ -92,13 +91,21 @@ def _nearest(xs: np.ndarray, marks) -> np.ndarray:
     return keep
 
 
-def _with_peaks(sl: SectionLoads, keep: np.ndarray) -> np.ndarray:
-    """Add the station where each quantity's largest |value| occurs."""
-    keep = keep.copy()
-    for v in sl.quantities.values():
-        a = np.abs(v).reshape(v.shape[0], -1).max(axis=1)
-        keep[int(np.argmax(a))] = True
-    return keep
+def _station_x(es: ElementSet, stations) -> np.ndarray:
+    element, xi, _ = stations
+    return es.x0[element] + xi * es.length[element]
+
+
+def _key_stations(es: ElementSet, q, stations, marks, **state):
+    """The stations at the marks, plus the one where each quantity's largest |value| over all columns
+    occurs (found chunk by chunk: the values at every station are never held for every column)."""
+    keep = _nearest(_station_x(es, stations), marks)
+    peak = None
+    for part in _chunks(es, q, stations, **state):
+        a = np.stack([np.abs(v).max(axis=1) for v in part.values()])      # (n_quantities, n_x)
+        peak = a if peak is None else np.maximum(peak, a)
+    keep[np.argmax(peak, axis=1)] = True
+    return tuple(v[keep] for v in stations)
 
 
 def _fe_marks(fe, extra=()) -> tuple[list, str]:
@@ -171,16 +178,41 @@ def _fe_modal(fe, shapes: np.ndarray, omegas: np.ndarray) -> StudyLoads:
                                     "eta (q = phi eta, eta in kg^0.5 m)")
 
 
-def _at(es: ElementSet, q, stations, *, omega=None, eigenvalue=None, qd=None, qdd=None, damping=None,
-        speed=0.0) -> SectionLoads:
-    mo = motion(es.n_dofs, q, qd, qdd, omega, eigenvalue)
+#: columns (frequencies, modes, samples) recovered at a time: bounds the element end forces held in memory
+CHUNK = 128
+
+
+def _chunks(es: ElementSet, q, stations, *, omega=None, eigenvalue=None, qd=None, qdd=None, damping=None,
+            speed=0.0):
+    """{quantity: (n_x, n_columns of the chunk)} for consecutive chunks of the columns of q."""
+    q = np.asarray(q)
+    q2 = q[:, None] if q.ndim == 1 else q
+    n_t = q2.shape[1]
     dmp = damping if isinstance(damping, ElementDamping) else ElementDamping.of(damping)
-    f = end_forces(es, mo, dmp, speed=speed)
     element, xi, side = stations
-    vals = station_values(es, f, mo, dmp, element, xi, side, speed=speed)
-    return SectionLoads(x=es.x0[element] + xi * es.length[element], quantities=vals,
-                        units={k: UNITS[k] for k in vals}, side=side, element=element, kind=mo.kind,
-                        parameter=mo.parameter, notes=[dmp.note] if dmp.note else [])
+    used, rows = np.unique(element, return_inverse=True)
+
+    def cut(v, sl):
+        return v[..., sl] if v is not None and np.ndim(v) >= 1 and np.shape(v)[-1] == n_t else v
+
+    for a in range(0, n_t, CHUNK):
+        sl = slice(a, a + CHUNK)
+        mo = motion(es.n_dofs, q2[:, sl], cut(qd, sl), cut(qdd, sl), cut(omega, sl), cut(eigenvalue, sl))
+        f = end_forces(es, mo, dmp, speed=cut(speed, sl), elements=used)
+        yield station_values(es, f, mo, dmp, element, xi, side, speed=cut(speed, sl), rows=rows)
+
+
+def _at(es: ElementSet, q, stations, *, omega=None, eigenvalue=None, damping=None, **state) -> SectionLoads:
+    """The section loads at ``stations`` for every column of q (recovered chunk by chunk)."""
+    parts = list(_chunks(es, q, stations, omega=omega, eigenvalue=eigenvalue, damping=damping, **state))
+    vals = {k: np.concatenate([p[k] for p in parts], axis=1) for k in parts[0]}
+    dmp = damping if isinstance(damping, ElementDamping) else ElementDamping.of(damping)
+    kind = "harmonic" if omega is not None else "modal" if eigenvalue is not None else \
+        ("time" if state.get("qd") is not None or state.get("qdd") is not None else "static")
+    parameter = None if omega is None and eigenvalue is None else np.atleast_1d(omega if omega is not None else eigenvalue)
+    element, xi, side = stations
+    return SectionLoads(x=_station_x(es, stations), quantities=vals, units={k: UNITS[k] for k in vals}, side=side,
+                        element=element, kind=kind, parameter=parameter, notes=[dmp.note] if dmp.note else [])
 
 
 def _fe_forced(study, res) -> StudyLoads:
@@ -199,12 +231,12 @@ def _fe_forced(study, res) -> StudyLoads:
     es = elements_of(fe)
     stations = node_stations(es, _fe_jumps(fe, loaded))
     Q = res.full.T
-    full = _at(es, Q, stations, omega=om, damping=damping)
     what = "every node (both sides where a load may jump)"
     if stations[0].size * om.size > NODE_BUDGET:
         marks, kinds = _fe_marks(fe, system.dof_x[loaded])
-        full = _subset(full, _with_peaks(full, _nearest(full.x, marks)))
+        stations = _key_stations(es, Q, stations, marks, omega=om, damping=damping)
         what = f"key stations ({kinds}, and where each quantity peaks): nodes x frequencies > {NODE_BUDGET}"
+    full = _at(es, Q, stations, omega=om, damping=damping)
     reactions = support_reactions(fe, Q, omega=om, force=F, damping=damping)
     return StudyLoads(section=full, stations=what, reactions=reactions,
                       notes=["complex amplitudes, x(t) = Re(X e^{i omega t}), one column per frequency"])
@@ -249,12 +281,12 @@ def _rotor_forced(study, res) -> StudyLoads:
     jumps = np.union1d(_rotor_jumps(rs), np.flatnonzero(Fu))
     stations = node_stations(es, jumps)
     Q = res.response.T
-    sl = _at(es, Q, stations, omega=w, speed=w)
     what = "every node (both sides where a load may jump)"
     if stations[0].size * w.size > NODE_BUDGET:
         marks = [d.x for d in rs.rotor.discs] + [b.x for b in rs.rotor.bearings] + [0.0, rs.rotor.length]
-        sl = _subset(sl, _with_peaks(sl, _nearest(sl.x, marks)))
+        stations = _key_stations(es, Q, stations, marks, omega=w, speed=w)
         what = f"discs, bearings, ends and where each quantity peaks: nodes x speeds > {NODE_BUDGET}"
+    sl = _at(es, Q, stations, omega=w, speed=w)
     reactions = rotor_reactions(rs, Q, omega=w, force=Fu[:, None] * (w**2)[None, :])
     return StudyLoads(section=sl, stations=what, reactions=reactions,
                       notes=["synchronous complex amplitudes at each speed (omega = spin speed), "
@@ -324,9 +356,9 @@ def hybrid_loads(study, res) -> StudyLoads:
         notes.append("the modal viscous form of psi has no element form: its damping forces are not in the section "
                      "loads")
     dmp = ElementDamping(alpha=alpha, beta=beta, viscous_loss_omega=omega_ref)
-    sl = _at(es, q, stations, qd=qd, qdd=qdd, damping=dmp)
     marks, kinds = _fe_marks(fe, attached)
-    sl = _subset(sl, _with_peaks(sl, _nearest(sl.x, marks)))
+    stations = _key_stations(es, q, stations, marks, qd=qd, qdd=qdd, damping=dmp)
+    sl = _at(es, q, stations, qd=qd, qdd=qdd, damping=dmp)
     held = np.union1d(sys_.constrained, np.asarray(attached_dofs[len(comp.coupling):], dtype=int))
     reactions = {}
     if held.size:

@@ -50,8 +50,12 @@ def payload(command: str, study, data: dict) -> dict:
 def with_loads(study, res, d: dict) -> dict:
     """``d`` with the key ``section_loads`` where the study's kind has internal loads of ``res``."""
     loads = study.loads(res) if study is not None and study.kind in ("fe", "hybrid", "rotor") else None
-    if loads is not None:
+    if loads is not None and loads.finite:
         d["section_loads"] = loads.to_dict()
+    elif loads is not None:
+        d["section_loads"] = None
+        d.setdefault("warnings", []).append("section loads not written: they overflow double precision (scale the "
+                                            "model's units; the analysis' own results above are unaffected)")
     return d
 
 
