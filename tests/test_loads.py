@@ -187,6 +187,8 @@ def test_hybrid_time_history_accelerations_satisfy_the_full_equations():
     loads = study.loads(res)
     assert loads.section.kind == "time" and loads.t.shape == res.t.shape
     assert "driver theta@x=0" in loads.reactions
+    d = loads.to_dict()
+    assert d["reactions"]["units"][d["reactions"]["labels"].index("driver theta@x=0")] == "N·m"
     T_root = loads.section["torque"][0]
     assert np.allclose(loads.reactions["driver theta@x=0"], -T_root, rtol=1e-9, atol=1e-9 * np.abs(T_root).max())
 

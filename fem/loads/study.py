@@ -78,7 +78,7 @@ class StudyLoads:
 
 
 def _reaction_unit(label: str) -> str:
-    field_name = label.split(":")[-1].split("@")[0]
+    field_name = label.split(":")[-1].split("@")[0].split()[-1]        # "driver theta@x=0" -> "theta"
     return "N·m" if field_name.startswith(("theta", "w_x", "phi")) else "N"
 
 
@@ -359,18 +359,14 @@ def hybrid_loads(study, res) -> StudyLoads:
     marks, kinds = _fe_marks(fe, attached)
     stations = _key_stations(es, q, stations, marks, qd=qd, qdd=qdd, damping=dmp)
     sl = _at(es, q, stations, qd=qd, qdd=qdd, damping=dmp)
-    held = np.union1d(sys_.constrained, np.asarray(attached_dofs[len(comp.coupling):], dtype=int))
-    reactions = {}
-    if held.size:
-        R = support_reactions(fe, q, qd=qd, qdd=qdd, damping=_rayleigh(alpha, beta))
-        reactions = {k: v for k, v in R.items() if not k.startswith("spring:")}
-        drv = {sys_.label(int(j)) for j in attached_dofs[len(comp.coupling):]}
-        for j in held:
-            lab = sys_.label(int(j))
-            if lab not in reactions:       # a driver: the torque/force it must supply
-                C = sys_.C + alpha * sys_.M + beta * sys_.K
-                reactions[lab] = (sys_.K @ q + C @ qd + sys_.M @ qdd)[int(j)]
-        reactions = {(("driver " + k) if k in drv else k): v for k, v in reactions.items()}
+    reactions = support_reactions(fe, q, qd=qd, qdd=qdd, damping=_rayleigh(alpha, beta))
+    driven = attached_dofs[len(comp.coupling):]
+    if driven:                 # the torque / force each driver puts into the FE shaft
+        C = sys_.C + alpha * sys_.M + beta * sys_.K
+        rows = np.asarray(driven, dtype=int)
+        R = (sys_.K[rows] @ q + C[rows] @ qd + sys_.M[rows] @ qdd)
+        for k, j in enumerate(rows):
+            reactions["driver " + sys_.label(int(j))] = R[k]
     if comp.elements and res.solver.element_forces is None:
         notes.append("accelerations from the recorded velocities (the regularised integrator records no element "
                      "forces): the inertia part is accurate to the sampling of the run")
