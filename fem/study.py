@@ -324,6 +324,15 @@ class Study:
 
         return run_up(self.rotor, spec.run, spec.unbalances, spec.rubs, progress=progress, check_steps=check_steps)
 
+    def loads(self, result):
+        """Internal loads of ``result`` (an analysis of this study): section loads along the FE shaft or the
+        rotor and the reactions of supports, springs, drivers and bearings (:class:`fem.loads.study.StudyLoads`:
+        load shapes of modes, complex amplitudes of forced responses, time histories of hybrid runs); None
+        for lumped and drive files and nonlinear steady states (docs/loads.md)."""
+        from .loads.study import study_loads
+
+        return study_loads(self, result)
+
     def steady_model(self):
         """The steady-state model of [steady] (lumped and hybrid files)."""
         from discrete.steady import SteadyModel
