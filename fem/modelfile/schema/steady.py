@@ -69,6 +69,10 @@ class Steady(Table):
     starting at the bodies' x0/v0 (the way onto a subharmonic branch, textbook §8.4)."""
     start_periods: Annotated[int, Field(ge=1, le=5_000)] = 100
     """HB, start = "time": response periods (forcing periods x subharmonic) integrated before HB."""
+    condense: Literal["auto", "yes", "no"] = "auto"
+    """HB: solve on the nonlinear elements' DOFs only, the linear rest condensed exactly per harmonic
+    (its receptance factorised once per frequency); "auto" where it pays (at most half of the DOFs
+    nonlinear and >= 96 HB unknowns), "yes" always (an error if the linear rest is not regular), "no" never."""
 
     @model_validator(mode="after")
     def _range(self):
