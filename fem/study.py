@@ -215,7 +215,13 @@ class Study:
             from discrete.steady import afc
 
             with single_threaded_blas():     # small dense kernels: BLAS threads only add contention
-                return afc(self.steady_model(), progress)
+                sm = self.steady_model()
+                res = afc(sm, progress)
+                if self.doc.steady.backbone:   # the nonlinear mode through the response DOF (discrete.steady.nnm)
+                    from discrete.steady.nnm import afc_backbone
+
+                    res.extra["backbone"] = afc_backbone(sm, res).to_dict()
+                return res
         if self.kind == "rotor":
             from .rotor import unbalance_response
 
