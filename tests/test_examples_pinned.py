@@ -14,8 +14,8 @@ EXAMPLES = ROOT / "examples"
 CASES = ROOT / "validation" / "cases"
 
 PINNED = {
-    "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown"],
-    "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown"],
+    "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown", "steady_condensed_hb"],
+    "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown", "steady_condensed_hb"],
     "hybrid_sweep_vibro_impact.toml": ["hybrid_afc_vibro_impact"],
     "beam_base_excitation.toml": ["base-motion-modal-vs-direct"],
     "parametric_drive.toml": ["parametric_model_file"],
@@ -42,10 +42,11 @@ PINNED = {
     "hybrid_seed003_rod.toml": ["hybrid_seed003", "hybrid_seed003_breakdown"],
     "hybrid_vibro_impact_beam.toml": ["hybrid_vibro_impact"],
     "sdof_base_motion.toml": ["sdof-kinematic"],
-    "steady_coulomb.toml": ["steady_coulomb_den_hartog"],
-    "steady_duffing.toml": ["steady_cubic_forced_jumps", "steady_cubic_backbone", "steady_subharmonic_third"],
+    "steady_coulomb.toml": ["steady_coulomb_den_hartog", "steady_backbones"],
+    "steady_duffing.toml": ["steady_cubic_forced_jumps", "steady_cubic_backbone", "steady_subharmonic_third",
+                            "steady_backbones"],
     "steady_subharmonic.toml": ["steady_subharmonic_third", "steady_subharmonic_existence"],
-    "steady_gap.toml": ["steady_gap_hb_vs_shooting"],
+    "steady_gap.toml": ["steady_gap_hb_vs_shooting", "steady_backbones"],
     "steady_seed002.toml": ["steady_seed002_afc", "steady_seed002_time_sweeps"],
     "sweep_seed002.toml": ["steady_seed002_afc", "steady_seed002_time_sweeps"],
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
