@@ -14,8 +14,12 @@ EXAMPLES = ROOT / "examples"
 CASES = ROOT / "validation" / "cases"
 
 PINNED = {
-    "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown", "steady_condensed_hb"],
-    "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown", "steady_condensed_hb"],
+    "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown", "steady_condensed_hb",
+                                     "hybrid_superelement_round_trip"],
+    "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown", "steady_condensed_hb",
+                                     "hybrid_superelement_round_trip"],
+    "hybrid_afc_superelement.toml": ["hybrid_superelement_round_trip"],
+    "superelement_tail_shaft.toml": ["hybrid_superelement_round_trip"],
     "hybrid_sweep_vibro_impact.toml": ["hybrid_afc_vibro_impact"],
     "beam_base_excitation.toml": ["base-motion-modal-vs-direct"],
     "parametric_drive.toml": ["parametric_model_file"],
