@@ -25,8 +25,10 @@ differ by round-off only (tests/test_steady_condense.py: 1e-10 on the hybrid AFC
 
 When it pays (:func:`condensation_rule`): the full HB Jacobian is dense (n (2H+1))^2 and its LU costs
 (n (2H+1))^3 / 3 per Newton step; condensed, (n_c (2H+1))^3 / 3 plus (H+1) complex factorisations of
-n_l x n_l.  ``[steady] condense = "auto"`` condenses when n_c <= n / 2 and n (2H+1) >= 96 (measured:
-below that the dense solve is a few microseconds and the per-harmonic bookkeeping costs as much), and
+n_l x n_l (compiled: condense_kernel.py, ~15 us for H = 25).  ``[steady] condense = "auto"`` condenses
+when n_c <= n / 2 and n (2H+1) >= 120 (measured per continuation point on chains of 2-4 bodies with one
+cubic spring: equal cost at 93 and 102 unknowns, 15 % less at 124, half at the hybrid cantilever's
+204), and
 the linear part seen from c is regular at the start (the static ``K_ll`` is invertible: no rigid motion
 of the linear DOFs with the coupling DOFs held).  ``"yes"`` forces it (an error if it is impossible),
 ``"no"`` switches it off.
@@ -40,7 +42,7 @@ from .hb import HBModel
 from .system import GridParts
 
 #: condense = "auto": the full system's HB size n (2H+1) from which condensation pays (measured, module doc)
-AUTO_MIN_UNKNOWNS = 96
+AUTO_MIN_UNKNOWNS = 120
 
 
 def coupling_dofs(system) -> np.ndarray:
@@ -113,7 +115,7 @@ class CondensedHB:
     interface of :class:`HBModel` that the continuation uses (``evaluate_residual``, ``residual``,
     ``solve``), plus :meth:`expand` / :meth:`restrict` between condensed and full coefficients."""
 
-    def __init__(self, full: HBModel, cache: int = 4):
+    def __init__(self, full: HBModel, cache: int = 4, compiled: bool = True):
         s = full.s
         self.full = full
         self.s = s
@@ -134,6 +136,7 @@ class CondensedHB:
         self._F = np.stack([self._complex(f @ full.Pm) for f in (g.fa, g.fb, g.fc, g.fd)])   # (4, H+1, n)
         self._cache: dict = {}
         self._cache_size = max(1, int(cache))
+        self.compiled = bool(compiled)
         nc, m = self.c.size, self.m
         self.nq = nc * m
         # positions of the real 2x2 blocks [[Sr, Si], [-Si, Sr]] in the (nc, m, nc, m) Jacobian
@@ -158,11 +161,35 @@ class CondensedHB:
 
     # ------------------------------------------------------------ the condensed linear operator
     def operator(self, omega: float) -> dict:
-        """S_k, dS_k/domega, f~_k, df~_k/domega (k = 0 .. H) and the expansion maps at ``omega``."""
+        """S_k, dS_k/domega, f~_k, df~_k/domega (k = 0 .. H) and the expansion maps at ``omega`` (the
+        compiled kernel of condense_kernel.py; :meth:`operator_numpy` is the same algebra batched)."""
         key = float(omega)
         op = self._cache.get(key)
         if op is not None:
             return op
+        if not self.compiled:
+            return self.operator_numpy(omega)
+        from .condense_kernel import operator
+
+        M, C, K = (A[0] for A in self._MCK)
+        S, dS, ft, dft, X, wf, ok = operator(M, C, K, self.c, self.l, self._F, key, float(self.nu), self._symmetric)
+        if not ok:
+            raise SolverError(f"condensed HB: the linear part with the nonlinear DOFs held is singular at "
+                              f"omega = {key!r} (a resonance of the linear structure): use condense = \"no\"")
+        return self._store(key, S, dS, ft, dft, X if self.l.size else None, wf if self.l.size else None)
+
+    def _store(self, key, S, dS, ft, dft, X, wf):
+        if not (np.all(np.isfinite(S)) and np.all(np.isfinite(ft))):
+            raise SolverError(f"condensed HB: the condensed operator is not finite at omega = {key!r}")
+        op = {"S": S, "dS": dS, "f": ft, "df": dft, "X": X, "wf": wf, "J": self._real_jacobian(S)}
+        if len(self._cache) >= self._cache_size:
+            del self._cache[next(iter(self._cache))]
+        self._cache[key] = op
+        return op
+
+    def operator_numpy(self, omega: float) -> dict:
+        """:meth:`operator` by batched numpy calls (the reference of the compiled kernel)."""
+        key = float(omega)
         k = self.k[:, None, None]
         kO = k * (key / self.nu)
         Mf, Cf, Kf = self._MCK
@@ -202,13 +229,7 @@ class CondensedHB:
         else:
             X = wf = None
             S, dS, ft, dft = Zcc, dZcc, F[:, c], dF[:, c]
-        if not (np.all(np.isfinite(S)) and np.all(np.isfinite(ft))):
-            raise SolverError(f"condensed HB: the condensed operator is not finite at omega = {key!r}")
-        op = {"S": S, "dS": dS, "f": ft, "df": dft, "X": X, "wf": wf, "J": self._real_jacobian(S)}
-        if len(self._cache) >= self._cache_size:
-            del self._cache[next(iter(self._cache))]
-        self._cache[key] = op
-        return op
+        return self._store(key, S, dS, ft, dft, X, wf)
 
     def _real_jacobian(self, S):
         """The real (nc m)^2 Jacobian of ``Re/-Im (S_k z_k)`` in the coefficients [a0, a1, b1, ...]."""

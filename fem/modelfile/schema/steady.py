@@ -75,7 +75,7 @@ class Steady(Table):
     condense: Literal["auto", "yes", "no"] = "auto"
     """HB: solve on the nonlinear elements' DOFs only, the linear rest condensed exactly per harmonic
     (its receptance factorised once per frequency); "auto" where it pays (at most half of the DOFs
-    nonlinear and >= 96 HB unknowns), "yes" always (an error if the linear rest is not regular), "no" never."""
+    nonlinear and >= 120 HB unknowns), "yes" always (an error if the linear rest is not regular), "no" never."""
 
     @model_validator(mode="after")
     def _range(self):
