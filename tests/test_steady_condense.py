@@ -74,3 +74,12 @@ def test_condensed_curve_reports_and_equals_full_at_the_smooth_fold():
     lo = min(f["omega"] for f in r.folds)
     lo_f = min(f["omega"] for f in rf.folds)
     assert abs(lo - lo_f) <= 1e-10 * lo_f
+
+
+def test_compiled_operator_equals_the_numpy_one():
+    sm, hb = _model("hybrid_afc_vibro_impact.toml")
+    cond = CondensedHB(hb)
+    for w in (250.0, 383.9, 450.0):
+        a, b = cond.operator(w), cond.operator_numpy(w)
+        for key in ("S", "dS", "f", "df", "X", "wf", "J"):
+            assert np.max(np.abs(a[key] - b[key])) <= 1e-13 * np.max(np.abs(b[key])), key
