@@ -58,6 +58,7 @@ SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("afc_hybrid.py", [], [], False),
     ("solid.py", ["--paths", "release", "auto"], [], False),
     ("rotor.py", ["--quick"], [], False),
+    ("pyharm.py", [], [], False),          # needs benchmarks/pyharm_env.sh (pyHarm in its own env)
 ]
 
 
