@@ -15,6 +15,8 @@ CASES = ROOT / "validation" / "cases"
 
 PINNED = {
     "ross_compressor.toml": ["rotor-ross-compressor"],
+    "rotor_friswell_damped.toml": ["loads-equilibrium-rotor"],
+    "rotor_compressor.toml": ["loads-equilibrium-rotor"],
     "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown", "steady_condensed_hb",
                                      "hybrid_superelement_round_trip"],
     "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown", "steady_condensed_hb",
