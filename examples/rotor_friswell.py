@@ -59,8 +59,11 @@ def main(out_dir: str | None = None, verbose: bool = True) -> dict:
     camp = campbell(damped, np.linspace(0.0, rpm(6000), 31), 6, orders=(1.0,))
     out["critical_speeds_rpm"] = [round(c.speed_rpm, 3) for c in camp.critical_speeds]
     out["critical_whirl"] = [c.whirl for c in camp.critical_speeds]
-    say("\ndamped rotor, 24 elements: synchronous critical speeds "
-        + ", ".join(f"{c.speed_rpm:.1f} rev/min ({c.whirl})" for c in camp.critical_speeds))
+    out["backward_crossings_rpm"] = [round(c.speed_rpm, 3) for c in camp.backward_crossings]
+    say("\ndamped rotor, 24 elements: synchronous critical speeds (forward whirl) "
+        + ", ".join(f"{c.speed_rpm:.1f} rev/min" for c in camp.critical_speeds)
+        + "; backward-whirl crossings (not excited by unbalance: isotropic bearings) "
+        + ", ".join(f"{c.speed_rpm:.1f}" for c in camp.backward_crossings) + " rev/min")
     op = (rpm(3000), rpm(3600))
     resp = unbalance_response(damped, [Unbalance(1.0, 1e-4)], np.linspace(rpm(200), rpm(6000), 300),
                               operating_range=op)

@@ -100,7 +100,7 @@ def test_critical_speeds_roots_equal_linear_eigenproblem():
     rs = assemble_rotor(friswell(6, kzz=0.7e6))
     camp = campbell(rs, np.linspace(0.0, 400.0, 11), 6, orders=(1.0, 0.5))
     for k in (1.0, 0.5):
-        roots = np.sort([c.speed_rad_s for c in camp.critical_speeds if c.order == k])
+        roots = np.sort([c.speed_rad_s for c in camp.crossings if c.order == k])
         lin = undamped_critical_speeds(rs, 8, order=k).speeds_rad_s
         lin = lin[lin <= 400.0]
         assert roots.size == lin.size > 0

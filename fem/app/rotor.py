@@ -36,8 +36,13 @@ def add_parser(subparsers) -> None:
     p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
                    "[analysis] modes or 6)")
     p.add_argument("--json", help="write the JSON diagram here (schema drivefem.campbell)")
-    p.add_argument("--png", help="write the PNG diagram here (excitation lines, critical speeds, log decrement)")
+    p.add_argument("--plot", help="write the PNG diagram here (excitation lines, critical speeds and backward "
+                   "crossings apart, operating range, log decrement)")
+    p.add_argument("--png", help="the same as --plot (older spelling)")
     p.add_argument("--csv", help="write the diagram here, one row per speed")
+    p.add_argument("--html", help="write the diagram as a self-contained interactive HTML file (needs plotly: "
+                   "pip install 'drivefem[html]')")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=campbell)
     for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
@@ -211,25 +216,47 @@ def response_columns(res) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
                          "model)")
     _linear_note(study)
-    camp = study.campbell(args.modes)
-    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    from ..modelfile.build.rotor import operating_range
+    from .progress import count_bar
+
+    op = operating_range(study.doc)
+    with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
+        camp = study.campbell(args.modes, progress=update)
+    data = contract.campbell_data(study, camp)
+    data["operating_range_rad_s"] = None if op is None else list(op)
+    _emit(args, "campbell", study, data)
     campbell_table(study, camp)
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp))
         print(f"wrote {args.csv}")
-    if args.png:
+    figure = getattr(args, "plot", None) or args.png
+    if figure:
         from ..rotor.plots import plot_campbell
 
-        print(f"wrote {plot_campbell(camp, args.png, title=study.title)}")
+        print(f"wrote {plot_campbell(camp, figure, title=study.title, operating_range=op)}")
+    if getattr(args, "html", None):
+        from ..output.html import campbell_html
+
+        print(f"wrote {campbell_html(camp, args.html, title=study.title, operating_range=op)}")
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
+
+
+def _crossing_line(c, label: str) -> str:
+    ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
+    return (f"{label} (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
+            f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}")
 
 
 def campbell_table(study, camp, out=None) -> None:
@@ -243,12 +270,18 @@ def campbell_table(study, camp, out=None) -> None:
         w = max(set(row[j] for row in camp.whirl), key=[row[j] for row in camp.whirl].count)
         print(f"{j + 1:4d} {camp.kind[j]:>8} {w:>9} {camp.omega_damped_rad_s[0, j] / (2 * np.pi):18.5f} "
               f"{camp.omega_damped_rad_s[-1, j] / (2 * np.pi):16.5f}", file=out)
-    if not camp.critical_speeds:
+    if not camp.crossings:
         print("no critical speed of orders " + ", ".join(f"{k:g}" for k in camp.orders) + " in the range", file=out)
     for c in camp.critical_speeds:
-        ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
-        print(f"critical speed (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
-              f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}", file=out)
+        print(_crossing_line(c, "critical speed"), file=out)
+    back = camp.backward_crossings
+    if back:
+        iso = camp.isotropic_supports
+        print("backward-whirl crossings, not critical speeds: " + (
+            "the supports are isotropic, so unbalance (a forward force) does not excite them" if iso else
+            "the supports are anisotropic: unbalance can excite them weakly (see drivefem forced)"), file=out)
+        for c in back:
+            print("  " + _crossing_line(c, "backward crossing"), file=out)
 
 
 def campbell_columns(camp) -> tuple[list[str], list]:

@@ -31,53 +31,118 @@ def _dominant(labels) -> str:
     return max(set(vals), key=vals.count)
 
 
-def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True) -> Path:
-    """Damped natural frequencies (Hz) of the tracked modes against speed (rev/min), coloured by
-    whirl (forward solid, backward dashed), the excitation lines k x speed, and the critical
-    speeds as circles; below, the log decrement of each mode."""
-    s = camp.speeds_rad_s * RPM
-    fig, axes = plt.subplots(2 if log_decrement else 1, 1, figsize=(7.5, 7 if log_decrement else 4.8), sharex=True,
-                             gridspec_kw={"height_ratios": [3, 1.3]} if log_decrement else None)
-    ax = axes[0] if log_decrement else axes
-    f = camp.omega_damped_rad_s / (2 * np.pi)
-    seen = set()
+def _wrap(text: str, width: int = 90) -> str:
+    import textwrap
+
+    return "\n".join(textwrap.wrap(text, width)) if text else text
+
+
+def _layout(fig, path) -> Path:
+    """Save a figure whose layout is already final (labels placed against it): no re-layout."""
+    path = Path(path)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+MODE_COLOURS = plt.get_cmap("tab10").colors
+WHIRL_LINE = {"forward": "-", "backward": "--", "mixed": "-.", "planar": ":", "none": "-"}
+WHIRL_TAG = {"forward": "F", "backward": "B", "mixed": "M", "planar": "P", "none": ""}
+
+
+def mode_tags(camp) -> list[str]:
+    """Short names of the tracked modes: number and dominant whirl (1B, 2F, 3M; axial/torsion: 5 torsion)."""
+    out = []
     for j in range(camp.n_modes):
         w = _dominant([row[j] for row in camp.whirl])
-        colour, ls = WHIRL_STYLE.get(w, ("k", "-"))
-        ax.plot(s, f[:, j], color=colour, ls=ls, lw=1.6, label=None if w in seen else f"{w} whirl")
-        seen.add(w)
-    top = float(np.nanmax(f)) * 1.05 if f.size else 1.0
+        kind = camp.kind[j]
+        out.append(f"{j + 1}{WHIRL_TAG.get(w, '')}" if kind == "lateral" else f"{j + 1} {kind}")
+    return out
+
+
+def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, operating_range=None) -> Path:
+    """Damped natural frequencies (Hz) of the tracked modes against speed (rev/min): one colour per
+    mode, the line style its whirl (forward solid, backward dashed, mixed dash-dot); the excitation
+    lines k x speed; the critical speeds (forward crossings) as filled circles and the backward-whirl
+    crossings as open squares, listed apart in the legend; the ``operating_range`` (rad/s) shaded;
+    below, the log decrement of each mode, labelled at its end.  Labels never overlap
+    (:func:`fem.output.figures.labels.place_labels`)."""
+    from ..output.figures.labels import RIGHT_OF, place_labels
+
+    s = camp.speeds_rad_s * RPM
+    fig, axes = plt.subplots(2 if log_decrement else 1, 1, figsize=(9.5, 7.6 if log_decrement else 5.2), sharex=True,
+                             gridspec_kw={"height_ratios": [3, 1.4]} if log_decrement else None)
+    ax = axes[0] if log_decrement else axes
+    f = camp.omega_damped_rad_s / (2 * np.pi)
+    tags = mode_tags(camp)
+    colours = [MODE_COLOURS[j % len(MODE_COLOURS)] for j in range(camp.n_modes)]
+    for j in range(camp.n_modes):
+        w = _dominant([row[j] for row in camp.whirl])
+        name = f"mode {tags[j]}: {w} whirl" if camp.kind[j] == "lateral" else f"mode {tags[j]}"
+        ax.plot(s, f[:, j], color=colours[j], ls=WHIRL_LINE.get(w, "-"), lw=1.6, label=name)
+    top = float(np.nanmax(f)) * 1.08 if f.size and np.nanmax(f) > 0 else 1.0
     for k in camp.orders:
-        ax.plot(s, k * camp.speeds_rad_s / (2 * np.pi), color="0.3", lw=1.0, ls="-")
+        ax.plot(s, k * camp.speeds_rad_s / (2 * np.pi), color="0.3", lw=0.9, ls="-", zorder=1)
         xe = min(s[-1], top * 2 * np.pi / k * RPM)
-        ax.text(xe, k * xe / RPM / (2 * np.pi), f" {k:g}x", fontsize=8, va="bottom", ha="right", color="0.3")
-    crit = camp.critical_speeds
+        ax.text(xe, min(k * xe / RPM / (2 * np.pi), top), f"{k:g}x ", fontsize=8, va="top", ha="right", color="0.3")
+    if operating_range is not None:
+        lo, hi = (v * RPM for v in operating_range)
+        for a in (axes if log_decrement else [ax]):
+            a.axvspan(lo, hi, color="tab:green", alpha=0.13, lw=0, zorder=0,
+                      label=f"operating range {lo:.0f}-{hi:.0f} rev/min" if a is ax else None)
+    crit, back = camp.critical_speeds, camp.backward_crossings
     if crit:
-        ax.plot([c.speed_rpm for c in crit], [c.frequency_rad_s / (2 * np.pi) for c in crit], "o", mfc="none",
-                mec="k", ms=8, label="critical speeds")
-        for c in crit:
-            if c.order == 1:
-                ax.annotate(f"{c.speed_rpm:.0f}", (c.speed_rpm, c.frequency_rad_s / (2 * np.pi)), fontsize=7,
-                            xytext=(4, -10), textcoords="offset points")
+        ax.plot([c.speed_rpm for c in crit], [c.frequency_rad_s / (2 * np.pi) for c in crit], "o", color="k", mec="w",
+                ms=7, zorder=5, label="critical speed (forward whirl crossing)")
+    if back:
+        iso = getattr(camp, "isotropic_supports", None)
+        note = ("not excited by unbalance: isotropic supports" if iso else
+                "anisotropic supports: may respond weakly" if iso is False else "backward whirl")
+        ax.plot([c.speed_rpm for c in back], [c.frequency_rad_s / (2 * np.pi) for c in back], "s", mfc="none",
+                mec="tab:red", mew=1.3, ms=7, zorder=5, label=f"backward crossing ({note})")
     ax.set_ylim(0, top)
+    ax.set_xlim(s[0], s[-1])
     ax.set_ylabel("damped natural frequency [Hz]")
-    ax.set_title(title or "Campbell diagram", fontsize=10)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.set_title(_wrap(f"Campbell diagram: {title}" if title else "Campbell diagram"), fontsize=10)
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
     ax.grid(alpha=0.3)
+    a2 = None
     if log_decrement:
         a2 = axes[1]
         ld = np.where(np.isfinite(camp.log_decrement), camp.log_decrement, np.nan)
         for j in range(camp.n_modes):
             w = _dominant([row[j] for row in camp.whirl])
-            colour, ls = WHIRL_STYLE.get(w, ("k", "-"))
-            a2.plot(s, ld[:, j], color=colour, ls=ls, lw=1.2)
+            a2.plot(s, ld[:, j], color=colours[j], ls=WHIRL_LINE.get(w, "-"), lw=1.2)
         a2.axhline(0.0, color="k", lw=0.8)
-        a2.set_ylabel("log decrement")
+        a2.set_ylabel("log decrement [-]")
         a2.grid(alpha=0.3)
         a2.set_xlabel("speed [rev/min]")
+        a2.set_xlim(s[0], s[-1])
     else:
         ax.set_xlabel("speed [rev/min]")
-    return _save(fig, path)
+    fig.tight_layout()
+    fig.canvas.draw()
+    def _crit_text(c):
+        return f"{c.speed_rpm:.0f}" + ("" if c.order == 1 else f" ({c.order:g}x)")
+    place_labels(ax, [(c.speed_rpm, c.frequency_rad_s / (2 * np.pi)) for c in crit], [_crit_text(c) for c in crit],
+                 fontsize=7.5)
+    ax_boxes = None
+    if back:
+        from ..output.figures.labels import existing_boxes
+
+        ax_boxes = existing_boxes(ax, fig.canvas.get_renderer())
+        place_labels(ax, [(c.speed_rpm, c.frequency_rad_s / (2 * np.pi)) for c in back], [_crit_text(c) for c in back],
+                     avoid=ax_boxes, fontsize=7.5, color="tab:red", style="italic")
+    if a2 is not None:
+        ends = []
+        for j in range(camp.n_modes):
+            ok = np.flatnonzero(np.isfinite(ld[:, j]))
+            if ok.size:
+                ends.append((j, s[ok[-1]], ld[ok[-1], j]))
+        ends.sort(key=lambda e: -e[2])
+        place_labels(a2, [(x, y) for _, x, y in ends], [tags[j] for j, _, _ in ends], offsets=RIGHT_OF, inside=False,
+                     colors=[colours[j] for j, _, _ in ends], fontsize=7.5)
+    return _layout(fig, path)
 
 
 def plot_bode(resp, path, *, probes=None, title: str = "", log: bool = True) -> Path:

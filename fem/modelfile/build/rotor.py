@@ -131,6 +131,20 @@ def _unbalances(doc) -> list:
     return [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
 
 
+def operating_range(doc) -> tuple | None:
+    """The operating speed range (rad/s): [campbell]'s, else [unbalance_response]'s, else None."""
+    for name in ("campbell", "unbalance_response"):
+        t = getattr(doc, name, None)
+        if t is None or (t.operating_range is None and t.operating_range_rpm is None):
+            continue
+        op = t.operating_range if t.operating_range_rpm is None else [v * RPM for v in t.operating_range_rpm]
+        if not op[0] <= op[1]:
+            raise ModelError(f"[{name}]", "operating_range" if t.operating_range_rpm is None else "operating_range_rpm",
+                             list(t.operating_range or t.operating_range_rpm), "[min, max] with min <= max")
+        return float(op[0]), float(op[1])
+    return None
+
+
 @dataclass
 class ResponseSpec:
     """What ``drivefem forced`` needs: unbalances, speeds (rad/s), probes, operating range."""

@@ -322,10 +322,15 @@ class CampbellTable(Table):
     """Excitation orders k of the lines omega = k Omega (1: synchronous)."""
     critical: bool = True
     """Find the critical speeds (roots of omega_j(Omega) = k Omega by Brent's method)."""
+    operating_range: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rad/s, shaded on the diagram (default: [unbalance_response]'s)."""
+    operating_range_rpm: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rev/min."""
 
     @model_validator(mode="after")
     def _speeds(self):
         _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        _one_of(self, ("operating_range", "operating_range_rpm"), required=False)
         return self
 
 
