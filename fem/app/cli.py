@@ -42,7 +42,10 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("model")
     f.add_argument("--json")
     f.add_argument("--csv")
-    f.add_argument("--plot", help="write a PNG of the response here")
+    f.add_argument("--plot", help="write a PNG of the response here (rotor files: a .png file for the Bode plot, "
+                   "or a directory for the Bode plot and a polar plot per probe)")
+    f.add_argument("--html", help="rotor files: write the Bode plot as a self-contained interactive HTML file "
+                   "(needs plotly: pip install 'drivefem[html]')")
     f.add_argument("--all", action="store_true", help="print every frequency")
     f.set_defaults(func=commands.forced)
     c = sub.add_parser("compare", help="a [drive] model by the discrete, transfer-matrix and continuum methods")

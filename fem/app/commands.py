@@ -88,6 +88,9 @@ def _dunkerley(study) -> float | None:
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
     _outputs(args, json=False, csv=False, plot=False)
+    if getattr(args, "html", None):
+        raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
+                         "unbalance response); for this model use --plot")
     study = Study.load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range

@@ -3,10 +3,11 @@
 * ``drivefem modal ROTOR [--modes N] [--json F] [--plot F] [--png DIR]``: complex modes at the speed of
   ``[analysis]`` (damped frequencies, log decrement, whirl); ``--plot`` the orbits of the first
   flexible mode, ``--png`` an off-screen 3D whirl picture per lateral mode;
-* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F] [--all]``: unbalance response of
-  ``[unbalance_response]`` and ``[[unbalance]]`` (Bode plot, peaks with AF and separation margins);
-* ``drivefem campbell ROTOR [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
-  ``[campbell]`` with the critical speeds;
+* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F|DIR] [--html F] [--all]``: unbalance response of
+  ``[unbalance_response]`` and ``[[unbalance]]`` (peaks with AF and separation margins); ``--plot
+  bode.png`` the Bode plot, ``--plot DIR`` the Bode plot and a polar plot per probe;
+* ``drivefem campbell ROTOR [--modes N] [--json F] [--plot F] [--csv F] [--html F]``: Campbell diagram
+  of ``[campbell]``: critical speeds (forward crossings) and backward crossings apart;
 * ``drivefem simulate ROTOR [--json F] [--csv F] [--png DIR]``: the run-up of ``[run_up]`` with the
   ``[[rub]]`` clearances and ``[[unbalance]]`` (orbits, rub forces and regimes, events, energy
   balance); exit 1 when the run stopped early (the reason is printed).
@@ -157,8 +158,35 @@ def modal_table(study, res, out=None) -> None:
 
 
 # --------------------------------------------------------------- forced
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+
+
+def figure_target(path, option: str = "--plot"):
+    """(file, None) for a path with an image suffix (one figure), else (None, directory) for several."""
+    from pathlib import Path
+
+    p = Path(path)
+    if p.suffix.lower() in IMAGE_SUFFIXES:
+        return p, None
+    if p.suffix:
+        raise ModelError("command line", option, str(path), "a .png file (one figure) or a directory without a suffix "
+                         "(every figure of the command)")
+    p.mkdir(parents=True, exist_ok=True)
+    return None, p
+
+
+def _file_name(text: str) -> str:
+    import re
+
+    return re.sub(r"[^A-Za-z0-9.-]+", "_", text).strip("_") or "probe"
+
+
 def forced(args) -> int:
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, json=False, csv=False, plot=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
@@ -168,9 +196,20 @@ def forced(args) -> int:
         write_csv(args.csv, *response_columns(res))
         print(f"wrote {args.csv}")
     if args.plot:
-        from ..rotor.plots import plot_bode
+        from ..rotor.plots import plot_bode, plot_polar, probe_label
 
-        print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
+        one, folder = figure_target(args.plot)
+        if one is not None:
+            print(f"wrote {plot_bode(res, one, title=study.title)}")
+        else:
+            print(f"wrote {plot_bode(res, folder / 'bode.png', title=study.title)}")
+            for j, p in enumerate(res.probes):
+                name = _file_name(probe_label(p))
+                print(f"wrote {plot_polar(res, folder / f'polar_{j + 1}_{name}.png', j, title=study.title)}")
+    if getattr(args, "html", None):
+        from ..output.html import bode_html
+
+        print(f"wrote {bode_html(res, args.html, title=study.title)}")
     return 0
 
 

@@ -145,61 +145,111 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, op
     return _layout(fig, path)
 
 
+def probe_label(p) -> str:
+    """A probe's name: its label from the model file when it has one, else position and direction."""
+    return getattr(p, "label", None) or f"x = {p.x:g} m ({p.direction})"
+
+
+def unwrapped_lag(phase_lag_deg) -> np.ndarray:
+    """Phase lag unwrapped along the speeds (degrees): no jump of 360 deg drawn as a vertical line."""
+    return np.rad2deg(np.unwrap(np.deg2rad(np.asarray(phase_lag_deg, dtype=float))))
+
+
 def plot_bode(resp, path, *, probes=None, title: str = "", log: bool = True) -> Path:
-    """Amplitude and phase lag of the probes against speed, peaks marked with their half-power
-    band, the operating range shaded."""
+    """Amplitude (um, log) and phase lag (deg, unwrapped) of the probes against speed (rev/min),
+    peaks marked with their half-power band and amplification factor (labels placed without
+    overlaps), the operating range shaded."""
+    from ..output.figures.labels import place_labels
+
     s = resp.speeds_rad_s * RPM
-    idx = range(len(resp.probes)) if probes is None else probes
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True)
+    idx = list(range(len(resp.probes))) if probes is None else list(probes)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8.5, 6.8), sharex=True)
+    colours = {}
     for j in idx:
         p = resp.probes[j]
-        label = f"x = {p.x:g} m ({p.direction})"
-        (a1.semilogy if log else a1.plot)(s, np.maximum(p.amplitude, 1e-300) * 1e6, label=label)
-        a2.plot(s, p.phase_lag_deg, label=label)
-    annotated = set()
+        line, = (a1.semilogy if log else a1.plot)(s, np.maximum(p.amplitude, 1e-300) * 1e6, label=probe_label(p))
+        colours[j] = line.get_color()
+        a2.plot(s, unwrapped_lag(p.phase_lag_deg), color=colours[j])
+    anchors, texts = [], []
     for pk in resp.peaks:
         if pk.probe in idx:
-            a1.plot(pk.speed_rad_s * RPM, pk.amplitude * 1e6, "kv", ms=5)
+            a1.plot(pk.speed_rad_s * RPM, pk.amplitude * 1e6, "v", color=colours[pk.probe], mec="k", ms=6)
             if pk.half_power_rad_s is not None:
                 lo, hi = pk.half_power_rad_s
-                a1.plot([lo * RPM, hi * RPM], [pk.amplitude / np.sqrt(2) * 1e6] * 2, "k-", lw=0.8)
-                key = round(pk.speed_rad_s * RPM / 50)          # one label per peak speed
-                if key not in annotated:
-                    annotated.add(key)
-                    a1.annotate(f"AF {pk.amplification_factor:.1f}", (pk.speed_rad_s * RPM, pk.amplitude * 1e6),
-                                fontsize=7, xytext=(4, 4), textcoords="offset points")
+                a1.plot([lo * RPM, hi * RPM], [pk.amplitude / np.sqrt(2) * 1e6] * 2, "-", color=colours[pk.probe], lw=0.8)
+            af = "" if pk.amplification_factor is None else f", AF {pk.amplification_factor:.1f}"
+            anchors.append((pk.speed_rad_s * RPM, pk.amplitude * 1e6))
+            texts.append(f"{pk.speed_rad_s * RPM:.0f} rev/min{af}")
     if resp.operating_range is not None:
+        lo, hi = (v * RPM for v in resp.operating_range)
         for a in (a1, a2):
-            a.axvspan(resp.operating_range[0] * RPM, resp.operating_range[1] * RPM, color="tab:green", alpha=0.12)
+            a.axvspan(lo, hi, color="tab:green", alpha=0.13, lw=0,
+                      label=f"operating range {lo:.0f}-{hi:.0f} rev/min" if a is a1 else None)
     a1.set_ylabel("amplitude [um]")
-    a1.set_title(title or "unbalance response", fontsize=10)
-    a1.legend(fontsize=7)
+    a1.set_title(_wrap(f"Unbalance response: {title}" if title else "Unbalance response"), fontsize=10)
+    a1.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
     a1.grid(alpha=0.3, which="both")
     a2.set_ylabel("phase lag [deg]")
-    a2.set_ylim(0, 360)
-    a2.set_yticks(range(0, 361, 90))
+    lag = np.concatenate([unwrapped_lag(resp.probes[j].phase_lag_deg) for j in idx]) if idx else np.zeros(1)
+    lo_t, hi_t = 90 * np.floor(np.nanmin(lag) / 90), 90 * np.ceil(np.nanmax(lag) / 90)
+    a2.set_yticks(np.arange(lo_t, hi_t + 1, 90 if hi_t - lo_t <= 720 else 180))
     a2.set_xlabel("speed [rev/min]")
+    a2.set_xlim(s[0], s[-1])
     a2.grid(alpha=0.3)
-    return _save(fig, path)
+    fig.tight_layout()
+    fig.canvas.draw()
+    place_labels(a1, anchors, texts, fontsize=7)
+    return _layout(fig, path)
 
 
-def plot_polar(resp, path, probe: int = 0, *, title: str = "") -> Path:
-    """Polar (Nyquist) plot of one probe's complex response over the speed range (um), speeds labelled."""
+def plot_polar(resp, path, probe: int = 0, *, title: str = "", labels: int = 8) -> Path:
+    """Polar (Nyquist) plot of one probe's complex response over the speed range (um): the speeds of
+    ``labels`` points equally spaced along the curve written beside them without overlaps (none
+    where the curve crowds at the origin), the operating range drawn thick, the peaks marked."""
+    from ..output.figures.labels import place_labels
+
     p = resp.probes[probe]
     z = p.value * 1e6
-    fig, ax = plt.subplots(figsize=(5.5, 5.5))
-    ax.plot(z.real, z.imag, "-", color="tab:blue")
-    n = max(1, z.size // 8)
-    for k in range(0, z.size, n):
+    sp = resp.speeds_rad_s * RPM
+    fig, ax = plt.subplots(figsize=(6.4, 6.0))
+    ax.plot(z.real, z.imag, "-", color="tab:blue", lw=1.2, label="response (speed rising along the curve)")
+    if resp.operating_range is not None:
+        lo, hi = (v * RPM for v in resp.operating_range)
+        inside = (sp >= lo) & (sp <= hi)
+        if inside.any():
+            ax.plot(z.real[inside], z.imag[inside], "-", color="tab:green", lw=4, alpha=0.6,
+                    label=f"operating range {lo:.0f}-{hi:.0f} rev/min")
+    ax.plot(z.real[0], z.imag[0], "o", color="k", ms=4, label=f"{sp[0]:.0f} rev/min (first speed)")
+    size = float(np.abs(z).max()) or 1.0
+    arc = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(z)))])       # labels spaced along the curve
+    targets = np.linspace(0.0, arc[-1], labels + 2)[1:-1]
+    picks = sorted({int(np.argmin(np.abs(arc - a))) for a in targets})
+    picks = [k for k in picks if abs(z[k]) > 0.04 * size]              # none in the crowd at the origin
+    for k in picks:
         ax.plot(z.real[k], z.imag[k], "o", color="tab:blue", ms=3)
-        ax.annotate(f"{resp.speeds_rad_s[k] * RPM:.0f}", (z.real[k], z.imag[k]), fontsize=7)
+    peaks = [pk for pk in resp.peaks if pk.probe == probe]
+    for pk in peaks:
+        k = int(np.argmin(np.abs(resp.speeds_rad_s - pk.speed_rad_s)))
+        ax.plot(z.real[k], z.imag[k], "v", color="k", ms=6)
     ax.axhline(0, color="0.6", lw=0.8)
     ax.axvline(0, color="0.6", lw=0.8)
     ax.set_aspect("equal", "datalim")
-    ax.set_xlabel("real [um]")
-    ax.set_ylabel("imaginary [um]")
-    ax.set_title(title or f"polar plot, x = {p.x:g} m ({p.direction}); labels: rev/min", fontsize=9)
-    return _save(fig, path)
+    ax.set_xlabel("real part [um]")
+    ax.set_ylabel("imaginary part [um]")
+    head = f"Polar plot: {title}" if title else "Polar plot"
+    ax.set_title(_wrap(head, 70) + f"\n{probe_label(p)}; labels: speed [rev/min]", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(0.0, -0.12), frameon=False)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.canvas.draw()
+    anchors = [(z.real[k], z.imag[k]) for k in picks]
+    texts = [f"{sp[k]:.0f}" for k in picks]
+    for pk in peaks:
+        k = int(np.argmin(np.abs(resp.speeds_rad_s - pk.speed_rad_s)))
+        anchors.append((z.real[k], z.imag[k]))
+        texts.append(f"peak {pk.speed_rad_s * RPM:.0f}")
+    place_labels(ax, anchors, texts, fontsize=7)
+    return _layout(fig, path)
 
 
 def _ellipse(V, W, n: int = 121):
