@@ -304,40 +304,92 @@ def plot_mode_orbits(modes, r: int, path, *, nodes=None) -> Path:
     return _save(fig, path)
 
 
-def plot_critical_speed_map(cmap_result, path, *, title: str = "") -> Path:
-    """Undamped critical speeds against bearing stiffness (log-log), with the bearings' own
-    stiffness curves (kyy, kzz against speed) when they are tabulated."""
+def plot_critical_speed_map(cmap_result, path, *, title: str = "", forward=None, overlay=(), intersections=(),
+                            operating_range=None, label: str = "forward critical") -> Path:
+    """Undamped synchronous critical speeds against bearing stiffness (log-log): the forward ones
+    (``forward``: (n_stiffness, n) array, rad/s; default: every column of the map), the model's
+    own bearings overlaid (``overlay``: dicts {name, kind "kyy"/"kzz", stiffness N/m, speeds_rad_s
+    or None for a constant bearing}: a vertical line for a constant one, its k(speed) curve for a
+    tabulated one), their ``intersections`` with the curves (dicts {speed_rad_s, stiffness, name}:
+    the critical speeds on those bearings) marked and labelled without overlaps, the operating
+    range (rad/s) shaded."""
+    from ..output.figures.labels import place_labels
+
     k = cmap_result.stiffness
-    fig, ax = plt.subplots(figsize=(7, 5))
-    S = cmap_result.speeds_rad_s * RPM
+    fig, ax = plt.subplots(figsize=(8.6, 5.6))
+    S = (cmap_result.speeds_rad_s if forward is None else forward) * RPM
     for j in range(S.shape[1]):
-        ax.loglog(k, S[:, j], "-", lw=1.5, label=f"critical {j + 1}")
-    for c in cmap_result.bearing_curves:
-        sp = np.asarray(c["speeds_rad_s"]) * RPM
-        ax.loglog(np.asarray(c["kyy"]), sp, "k--", lw=1.0, label=f"bearing {c['bearing']} kyy")
-        ax.loglog(np.asarray(c["kzz"]), sp, "k:", lw=1.0, label=f"bearing {c['bearing']} kzz")
+        ax.loglog(k, S[:, j], "-", lw=1.6, color=MODE_COLOURS[j % len(MODE_COLOURS)], label=f"{label} {j + 1}")
+    styles = {"kyy": "--", "kzz": ":"}
+    for c in overlay:
+        ls = styles.get(c["kind"], "-.")
+        if c.get("speeds_rad_s") is None:
+            ax.axvline(c["stiffness"], color="0.25", ls=ls, lw=1.0, label=f"{c['name']} {c['kind']} = {c['stiffness']:.3g} N/m")
+        else:
+            ax.loglog(np.asarray(c["stiffness"]), np.asarray(c["speeds_rad_s"]) * RPM, color="0.25", ls=ls, lw=1.2,
+                      label=f"{c['name']} {c['kind']}(speed)")
+    if operating_range is not None:
+        lo, hi = (v * RPM for v in operating_range)
+        ax.axhspan(lo, hi, color="tab:green", alpha=0.13, lw=0, label=f"operating range {lo:.0f}-{hi:.0f} rev/min")
+    if intersections:
+        ax.plot([c["stiffness"] for c in intersections], [c["speed_rad_s"] * RPM for c in intersections], "o", color="k",
+                mec="w", ms=6, zorder=5, label="intersection: critical speed on the model's bearing")
+    ax.set_xlim(k[0], k[-1])
+    finite = S[np.isfinite(S)]
+    if finite.size:
+        ax.set_ylim(0.7 * finite.min(), 1.4 * finite.max())
     ax.set_xlabel("bearing stiffness [N/m]")
-    ax.set_ylabel("critical speed [rev/min]")
-    ax.set_title(title or "undamped critical speed map", fontsize=10)
+    ax.set_ylabel("undamped critical speed [rev/min]")
+    ax.set_title(_wrap(f"Undamped critical speed map: {title}" if title else "Undamped critical speed map", 80),
+                 fontsize=10)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    return _save(fig, path)
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
+    fig.tight_layout()
+    fig.canvas.draw()
+    place_labels(ax, [(c["stiffness"], c["speed_rad_s"] * RPM) for c in intersections],
+                 [f"{c['speed_rad_s'] * RPM:.0f}" for c in intersections], fontsize=7.5)
+    return _layout(fig, path)
 
 
-def plot_static(static, path, *, title: str = "") -> Path:
-    """Static deflection v, w along the shaft (um) with the bearing loads annotated."""
-    fig, ax = plt.subplots(figsize=(7, 3.8))
-    ax.plot(static.node_x, static.v * 1e6, label="v (y)")
-    ax.plot(static.node_x, static.w * 1e6, label="w (z)")
-    for x, f in zip(static.bearing_x, static.bearing_force):
-        ax.axvline(x, color="0.7", lw=0.8)
-        ax.annotate(f"{np.hypot(*f):.0f} N", (x, 0), fontsize=7, xytext=(3, 3), textcoords="offset points")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("deflection [um]")
-    ax.set_title(title or "static deflection", fontsize=10)
-    ax.legend(fontsize=8)
+def plot_static(static, path, *, title: str = "", bearing_names=None, discs=()) -> Path:
+    """Static deflection along the shaft (um; the components that are loaded), the bearings marked
+    with their names and the load each carries, the discs by name (``discs``: [(x, name)])."""
+    from ..output.figures.labels import place_labels
+
+    fig, ax = plt.subplots(figsize=(8.2, 4.4))
+    x = static.node_x
+    comps = [(static.v, "v: deflection along y"), (static.w, "w: deflection along z")]
+    shown = [(c, lab) for c, lab in comps if np.any(c != 0)] or comps[1:]
+    for c, lab in shown:
+        ax.plot(x, c * 1e6, lw=1.6, label=lab)
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    names = bearing_names or [f"bearing {i + 1}" for i in range(static.bearing_x.size)]
+    main = shown[0][0]
+    anchors, texts = [], []
+    for xb, f, n in zip(static.bearing_x, static.bearing_force, names):
+        yb = float(np.interp(xb, x, main)) * 1e6
+        ax.plot(xb, yb, "^", color="k", ms=8, zorder=5)
+        anchors.append((xb, yb))
+        texts.append(f"{n}: {np.hypot(*f):.4g} N")
+    for xd, n in discs:
+        yd = float(np.interp(xd, x, main)) * 1e6
+        ax.plot(xd, yd, "s", color="tab:gray", ms=6, zorder=5)
+        anchors.append((xd, yd))
+        texts.append(n)
+    ax.plot([], [], "^", color="k", label="bearings: load carried")
+    if discs:
+        ax.plot([], [], "s", color="tab:gray", label="discs")
+    ax.set_xlabel("x along the shaft [m]")
+    ax.set_ylabel("static deflection [um]")
+    ax.set_title(_wrap(f"Static deflection under gravity: {title}" if title else "Static deflection", 80), fontsize=10)
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
     ax.grid(alpha=0.3)
-    return _save(fig, path)
+    lo, hi = ax.get_ylim()
+    ax.set_ylim(lo - 0.15 * (hi - lo), hi + 0.15 * (hi - lo))
+    fig.tight_layout()
+    fig.canvas.draw()
+    place_labels(ax, anchors, texts, fontsize=7.5)
+    return _layout(fig, path)
 
 
 def plot_run_up(res, path, *, title: str = "") -> Path:
