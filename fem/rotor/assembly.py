@@ -36,6 +36,7 @@ class _Table:
     grid: np.ndarray
     values: np.ndarray              # (8, n_grid) in BEARING_COEFFICIENTS order
     interpolation: str
+    label: str = ""                 # the bearing's table and number in messages (default [[rotor.bearing]] #index)
 
     def at(self, speeds: np.ndarray) -> np.ndarray:
         """(n_speeds, 8) coefficients; a speed outside the table is an error (no extrapolation)."""
@@ -43,7 +44,7 @@ class _Table:
         lo, hi = self.grid[0], self.grid[-1]
         bad = s[(s < lo * (1 - 1e-12)) | (s > hi * (1 + 1e-12))]
         if bad.size:
-            raise ModelError(f"[[rotor.bearing]] #{self.index}", "speed", float(bad[0]),
+            raise ModelError(self.label or f"[[rotor.bearing]] #{self.index}", "speed", float(bad[0]),
                              f"a speed inside the bearing table's range [{lo:g}, {hi:g}] rad/s "
                              "(the table is not extrapolated: extend its `speeds`)")
         s = np.clip(s, lo, hi)
@@ -401,8 +402,12 @@ def assemble_rotor(rotor: Rotor, *, nonlinear_bearings: str = "linearised") -> R
         tab = b.table()
         if b.speed_dependent:
             t_no = len(tables)
+            kind = getattr(b, "kind", "bearing")
+            label = "" if kind == "bearing" else \
+                f"[[rotor.{kind}]] #{sum(getattr(c, 'kind', 'bearing') == kind for c in rotor.bearings[:b_no])}"
             tables.append(_Table(index=b_no, grid=b.speed_grid,
-                                 values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]), interpolation=b.interpolation))
+                                 values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]), interpolation=b.interpolation,
+                                 label=label))
         for slot, key in enumerate(BEARING_COEFFICIENTS):
             r_, c_ = coeff_slots[key]
             for (i, si) in incid[r_]:

@@ -87,7 +87,7 @@ def elements(rs: RotorSystem, T: np.ndarray, bearings) -> list[SmoothPlanarEleme
             pv, pw = _pedestal_dofs(rs, b.pedestal)
             gy, gz = gy - T[pv], gz - T[pw]
         out.append(SmoothPlanarElement(name=b.name or f"{b.kind.replace('_', ' ')} at x = {b.x:g} m", g_y=gy, g_z=gz,
-                                       law=b.planar_law(), scale=b.clearance))
+                                       law=b.planar_law(), scale=b.length_scale))
     return out
 
 

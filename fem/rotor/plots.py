@@ -241,10 +241,66 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     ax.legend(fontsize=8)
     ax.set_title(title or f"run-up ({res.method})")
     ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8, va="top")
-    ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
+    if res.rubs or not res.bearings:
+        ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
+    else:                                   # bearings computed from their geometry: the journals' eccentricity
+        for b in res.bearings:
+            ax2.plot(s, b.eccentricity, lw=0.8, label=b.name)
+        ax2.set_ylabel("bearing eccentricity ratio e/c [-]")
+        ax.text(0.01, 0.90, "orbit radius about the bearing centres' line (static sag included)", transform=ax.transAxes,
+                fontsize=8, va="top")
     ax2.set_xlabel("speed [rev/min]")
-    if res.rubs:
+    if res.rubs or res.bearings:
         ax2.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_cascade(cas, path, *, onset=None, title: str = "", slices: int = 40, fmax: float | None = None) -> Path:
+    """Waterfall of a run-up: the whirl spectrum of each window (:func:`fem.rotor.whirl_spectrum.cascade`)
+    drawn at the height of its speed (rev/min), forward whirl at positive frequencies (Hz), backward at
+    negative ones, with the 1x and 0.5x lines and the whirl onset (a :class:`WhirlOnset`) marked."""
+    fig, ax = plt.subplots(figsize=(7.5, 6.0))
+    f_hz = cas.frequency / (2 * np.pi)
+    top = float(cas.speed.max()) / (2 * np.pi)
+    fmax = fmax or 1.6 * top
+    keep = np.abs(f_hz) <= fmax
+    pick = np.unique(np.linspace(0, cas.t.size - 1, min(slices, cas.t.size)).astype(int))
+    rpm = cas.speed * RPM
+    span = float(rpm.max() - rpm.min()) or 1.0
+    amp = cas.amplitude[:, keep]
+    scale = 3.0 * span / max(len(pick), 1) / max(float(amp[pick].max()), 1e-300)
+    for i in pick[::-1]:
+        base = rpm[i]
+        y = base + scale * amp[i]
+        ax.fill_between(f_hz[keep], base, y, color="white", zorder=2 * (cas.t.size - i))
+        ax.plot(f_hz[keep], y, color="tab:blue", lw=0.7, zorder=2 * (cas.t.size - i) + 1)
+    ax.plot(rpm / 60.0, rpm, "k--", lw=0.8, label="1x (synchronous)", zorder=10 ** 6)
+    ax.plot(0.5 * rpm / 60.0, rpm, ":", color="0.4", lw=0.8, label="0.5x", zorder=10 ** 6)
+    if onset is not None and onset.onset_speed is not None:
+        ax.axhline(onset.onset_speed * RPM, color="tab:red", lw=0.8,
+                   label=f"whirl onset {onset.onset_speed * RPM:.0f} rev/min ({onset.whirl_frequency / (2 * np.pi):.1f} Hz)",
+                   zorder=10 ** 6)
+    ax.set_xlim(-0.25 * fmax, fmax)
+    ax.set_xlabel("whirl frequency [Hz] (negative: backward)")
+    ax.set_ylabel("speed [rev/min] (spectra offset by their speed)")
+    ax.set_title(title or f"cascade at x = {cas.probe_x:g} m")
+    ax.legend(fontsize=8, loc="lower right")
+    return _save(fig, path)
+
+
+def plot_whirl_onset(res, onset, path, *, title: str = "") -> Path:
+    """The subsynchronous whirl amplitude (band-passed envelope) against speed, log scale, with the
+    onset (its minimum) marked."""
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    s = res.speed * RPM
+    ax.semilogy(s, 1e6 * np.maximum(onset.envelope, 1e-30), lw=0.8)
+    if onset.onset_speed is not None:
+        ax.axvline(onset.onset_speed * RPM, color="tab:red", lw=0.8, label=f"onset {onset.onset_speed * RPM:.0f} rev/min")
+        ax.legend(fontsize=8)
+    ax.set_xlabel("speed [rev/min]")
+    ax.set_ylabel("subsynchronous whirl amplitude [µm]")
+    ax.set_title(title or f"whirl at x = {onset.probe_x:g} m: band {onset.band[0] / (2 * np.pi):.0f}-"
+                 f"{onset.band[1] / (2 * np.pi):.0f} Hz")
     return _save(fig, path)
 
 

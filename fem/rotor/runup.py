@@ -28,6 +28,7 @@ from .transient import (WORKS, SpeedRamp, Trajectory, UnbalanceLoad, check_rigid
                         integrate_moreau)
 
 METHODS = ("event", "moreau")
+INTEGRATORS = ("auto", "DOP853", "LSODA")
 STARTS = ("steady", "rest")
 
 
@@ -60,7 +61,9 @@ class RunUp:
     a 40th of the shortest retained period); ``output_step`` (None: a 64th of the shortest
     revolution, at most 20 000 samples); ``rtol`` of the event-located integrator; ``start``
     "steady" (the linear synchronous response at ``speed_start``, no contact force) or "rest";
-    ``max_events``: a chattering contact stops the run beyond this many events."""
+    ``max_events``: a chattering contact stops the run beyond this many events; ``integrator`` of
+    ``method = "event"``: "DOP853" (explicit), "LSODA" (stiff phases by BDF), "auto" (LSODA when
+    bearings computed from their geometry act, whose films are stiff on light journals; else DOP853)."""
 
     speed_start: float
     speed_end: float
@@ -72,6 +75,7 @@ class RunUp:
     rtol: float = 1e-8
     start: str = "steady"
     max_events: int = 100_000
+    integrator: str = "auto"
 
     def check(self) -> None:
         where = "[run_up]"
@@ -85,6 +89,7 @@ class RunUp:
                             "s: a step no longer than the duration")
         checks.bounded(where, "rtol", self.rtol, (">=", 1e-13), ("<=", 1e-3), "relative tolerance")
         checks.integer(where, "max_events", self.max_events, 1)
+        checks.choice(where, "integrator", self.integrator, INTEGRATORS)
 
 
 @dataclass
@@ -143,6 +148,7 @@ class RunUpResult:
     wall_time: float
     warnings: list = field(default_factory=list)
     bearings: list = field(default_factory=list)
+    integrator: str = "DOP853"
 
     def to_dict(self, samples: bool = False) -> dict:
         out = {"method": self.method, "t_end": float(self.t[-1]) if self.t.size else 0.0,
@@ -157,6 +163,8 @@ class RunUpResult:
                "reduction": self.reduction, "warnings": list(self.warnings)}
         if self.bearings:
             out["bearings"] = [b.to_dict() for b in self.bearings]
+        if self.method == "event" and (self.bearings or self.integrator != "DOP853"):
+            out["integrator"] = self.integrator
         if samples:
             out["samples"] = {"t": self.t.tolist(), "speed_rad_s": self.speed.tolist(),
                               "orbit_y": self.orbit_y.T.tolist(), "orbit_z": self.orbit_z.T.tolist()}
@@ -292,10 +300,11 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
         estimate, note = ramp.duration / h, f"Moreau-Jean steps of {h:.3g} s"
     if check_steps is not None:
         check_steps(estimate, note)
+    integrator = run.integrator if run.integrator != "auto" else ("LSODA" if smooth else "DOP853")
     if run.method == "event":
         traj: Trajectory = integrate_compliant(red, ramp, load, laws, eta0, v0, t_out, rtol=run.rtol,
                                                max_events=run.max_events, progress=progress, smooth=smooth,
-                                               static=static)
+                                               static=static, integrator=integrator)
     else:
         traj = integrate_moreau(red, ramp, load, laws, eta0, v0, t_out, h, progress=progress, smooth=smooth,
                                 static=static)
@@ -341,7 +350,7 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
                        energy_end=traj.energy_end, energy_error=float(err), reduction=reduction, method=run.method,
                        stopped=traj.stopped, steps=traj.steps, wall_time=time.perf_counter() - wall, warnings=warnings,
                        bearings=nlb.histories(rs, nonlinear, smooth, traj.eta, traj.eta_dot, speed,
-                                              ramp.angle(traj.t)) if nonlinear else [])
+                                              ramp.angle(traj.t)) if nonlinear else [], integrator=integrator)
 
 
 __all__ = ["Rub", "RunUp", "RunUpResult", "RubHistory", "run_up", "METHODS", "WORKS"]

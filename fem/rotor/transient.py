@@ -121,6 +121,11 @@ class _Model:
         self.sy = np.array([e.g_y for e in self.smooth]).reshape(-1, self.n)
         self.sz = np.array([e.g_z for e in self.smooth]).reshape(-1, self.n)
         self.static = None if static is None else np.asarray(static, dtype=float)
+        # the work categories of this run (an optional one only when present: the state vector, hence the
+        # integrator's error norm and steps, of a run without them is as before they existed)
+        self.work_keys = [k for k in WORKS if k not in _OPTIONAL_WORKS or (k == "bearings" and self.smooth)
+                          or (k == "static_load" and self.static is not None)]
+        self.windex = {k: i for i, k in enumerate(self.work_keys)}
         self.const = not red.Kc.shape[0]
         if self.const:
             self.K, self.C = red.K0, red.C0
@@ -142,12 +147,7 @@ class _Model:
 
     def works(self, values) -> dict:
         """The work dictionary, without the optional categories this run does not have."""
-        out = dict(zip(WORKS, (float(w) for w in values)))
-        if not self.smooth:
-            out.pop("bearings")
-        if self.static is None:
-            out.pop("static_load")
-        return out
+        return dict(zip(self.work_keys, (float(w) for w in values)))
 
     @staticmethod
     def _parts(K, C):
@@ -201,14 +201,16 @@ def _started(fns, t0, Y0):
 
 def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, v0, t_out: np.ndarray, *,
                         rtol: float = 1e-8, max_events: int = 100_000, progress=None, smooth=(),
-                        static=None) -> Trajectory:
+                        static=None, integrator: str = "DOP853") -> Trajectory:
     """Event-located integration of compliant contacts (see the module docstring); ``smooth``:
-    smooth planar elements, ``static``: a constant reduced load."""
+    smooth planar elements, ``static``: a constant reduced load; ``integrator`` "DOP853" (explicit,
+    order 8) or "LSODA" (switches to BDF where the problem is stiff: fluid films on light journals,
+    whose damping over the journal's mass sets the explicit step)."""
     mdl = _Model(red, ramp, load, contacts, smooth, static)
     n, nc = mdl.n, len(mdl.contacts)
     by, bz, cs = mdl.by, mdl.bz, mdl.contacts
     t_end = ramp.duration
-    nw = len(WORKS)
+    nw = len(mdl.work_keys)
 
     def local(j, eta, v):
         return by[j] @ eta, bz[j] @ eta, by[j] @ v, bz[j] @ v
@@ -233,11 +235,11 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
                 dW[5] += Ft * (vs - Om * c.radius)
                 dW[6] += Ft * Om * c.radius
         if mdl.smooth:
-            fb, dW[8] = mdl.smooth_forces(t, eta, v)
+            fb, dW[mdl.windex["bearings"]] = mdl.smooth_forces(t, eta, v)
             f += fb
         if mdl.static is not None:
             f += mdl.static
-            dW[9] = v @ mdl.static
+            dW[mdl.windex["static_load"]] = v @ mdl.static
         dW[0] = v @ fu
         dW[1] = -v @ Cs @ v
         dW[2] = -v @ Kskew @ eta
@@ -283,7 +285,8 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
     s_v = max(float(np.abs(v0).max(initial=0.0)), s_eta * max(ramp.start, ramp.end, red.omega.min(initial=1.0)))
     atol = np.concatenate([np.full(n, rtol * s_eta), np.full(n, rtol * s_v), np.full(nw, 1e30)])
     ts, Ys, modes_at, events, steps, t, stopped = [], [], [], [], 0, 0.0, None
-    max_step = 2 * math.pi / max(red.omega.max(), ramp.end, 1e-12)
+    max_step = 2 * math.pi / max(red.omega.max() if integrator == "DOP853" else 8 * max(ramp.start, ramp.end),
+                                 ramp.end, 1e-12)
     chunk = t_end / 50                  # the integration restarts at least every 2 % (progress, bounded memory)
     while t < t_end:
         t_stop = t_end if t_end - t <= 1.5 * chunk else t + chunk
@@ -292,7 +295,7 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
         extra = not np.any(t_out == t_stop)          # t_stop is sampled to carry the state on, not an output
         fns = _started(guards(modes), t, Y)
         held = list(modes)
-        sol = solve_ivp(lambda tt, YY: rhs(tt, YY, held), (t, t_stop), Y, method="DOP853", t_eval=te,
+        sol = solve_ivp(lambda tt, YY: rhs(tt, YY, held), (t, t_stop), Y, method=integrator, t_eval=te,
                         events=fns or None, rtol=rtol, atol=atol, max_step=max_step)
         steps += int(sol.nfev)
         if sol.status == -1:
@@ -371,7 +374,7 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
     h = t_end / steps
     out_idx = np.unique(np.clip(np.rint(t_out / h).astype(int), 0, steps))
     q, v = np.array(eta0, float), np.array(v0, float)
-    works = mdl.works(np.zeros(len(WORKS)))
+    works = mdl.works(np.zeros(len(mdl.work_keys)))
     rec_t, rec_q, rec_v, rec_N, rec_s, rec_c = [], [], [], [], [], []
     state = ["free"] * nc
     events = []

@@ -102,7 +102,6 @@ class JournalBearing(Bearing):
 
     # ---------------------------------------------------------------- checks
     def check(self, where: str) -> None:
-        where = where.replace("[[rotor.bearing]]", "[[rotor.journal_bearing]]")
         checks.number(where, "x", self.x, "a position in m")
         for key in ("diameter", "length", "clearance", "viscosity"):
             checks.positive(where, key, getattr(self, key))
@@ -145,6 +144,11 @@ class JournalBearing(Bearing):
     @property
     def radius(self) -> float:
         return 0.5 * self.diameter
+
+    @property
+    def length_scale(self) -> float:
+        """The law's length (the clearance, m): the integrators' absolute tolerances."""
+        return self.clearance
 
     @property
     def force_scale(self) -> float:

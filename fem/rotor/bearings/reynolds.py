@@ -106,7 +106,7 @@ class ReynoldsFilm:
         zeta = np.linspace(0.0, self.length_ratio, int(n_axial) + 1)
         self.mesh = MeshTri.init_tensor(theta, zeta)
         self.basis = Basis(self.mesh, ElementTriP1(), intorder=4)
-        x = self.basis.global_coordinates().value
+        x = np.asarray(self.basis.global_coordinates())
         self._cos_q, self._sin_q = np.cos(x[0]), np.sin(x[0])
         # periodic identification theta = 2 pi -> theta = 0 (same zeta)
         p = self.mesh.p
