@@ -342,7 +342,8 @@ def run_up_table(study, res, out=None) -> None:
           f"{res.steps} steps ({'right-hand sides' if res.method == 'event' else 'time steps'}), {res.wall_time:.3g} s", file=out)
     fc = red["frequency_check"]
     print(f"reduced rotor: {red['basis']} shapes ({red['modes']} modes + {red['attachment_shapes']} attachment), "
-          f"highest {red['highest_frequency_rad_s']:.4g} rad/s; static restitution at the rubs "
+          f"highest {red['highest_frequency_rad_s']:.4g} rad/s; static restitution at the "
+          f"{'rubs and bearings' if res.bearings else 'rubs'} "
           f"{_lowest(red['restitution'])}; complex eigenvalues vs full rotor at {fc['speed_rad_s']:.4g} rad/s: "
           f"max rel. error {fc['max_relative_error']:.2e}", file=out)
     for k, x in enumerate(res.probe_x):
@@ -358,6 +359,10 @@ def run_up_table(study, res, out=None) -> None:
               f"max normal force {r.normal_force.max(initial=0.0):.4g} N; full annular rub at rev/min {full}; "
               f"contact share {100 * r.in_contact.mean():.1f} %"
               + (f"; max penetration {r.max_penetration:.3g} m" if res.method == "moreau" else ""), file=out)
+    for b in res.bearings:
+        print(f"  {b.kind.replace('_', ' ')} {b.name!r} at x = {b.x:g} m (clearance {b.clearance:g} m): eccentricity "
+              f"ratio {b.eccentricity.min():.4g} ... {b.eccentricity.max():.4g}, largest force {b.force.max(initial=0.0):.4g} N",
+              file=out)
     w = res.works
     print("energy: start {:.6g} J, end {:.6g} J; works ".format(res.energy_start, res.energy_end)
           + ", ".join(f"{k} {v:.6g}" for k, v in w.items()) + f" J; balance error {res.energy_error:.2e}", file=out)

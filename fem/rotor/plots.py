@@ -293,7 +293,7 @@ def plot_whirl_onset(res, onset, path, *, title: str = "") -> Path:
     onset (its minimum) marked."""
     fig, ax = plt.subplots(figsize=(7.5, 4.2))
     s = res.speed * RPM
-    ax.semilogy(s, 1e6 * np.maximum(onset.envelope, 1e-30), lw=0.8)
+    ax.semilogy(s, 1e6 * onset.envelope, lw=0.8)
     if onset.onset_speed is not None:
         ax.axvline(onset.onset_speed * RPM, color="tab:red", lw=0.8, label=f"onset {onset.onset_speed * RPM:.0f} rev/min")
         ax.legend(fontsize=8)
@@ -313,8 +313,9 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
     ends = np.linspace(n // windows, n - 1, windows).astype(int)
     x = res.probe_x[probe]
     rub = next((r for r in res.rubs if abs(r.x - x) < 1e-12), None)
+    brg = next((b for b in getattr(res, "bearings", []) if abs(b.x - x) < 1e-12), None)
     lim = 1e3 * max(np.hypot(res.orbit_y[:, probe], res.orbit_z[:, probe]).max(initial=0.0),
-                    rub.clearance + math.hypot(*rub.centre) if rub else 0.0) * 1.1 or 1.0
+                    rub.clearance + math.hypot(*rub.centre) if rub else 0.0, brg.clearance if brg else 0.0) * 1.1 or 1.0
     for ax, k in zip(axes, ends):
         revs = 3 * 2 * np.pi / max(res.speed[k], 1e-12)
         sel = (res.t > res.t[k] - revs) & (res.t <= res.t[k])
@@ -323,11 +324,15 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
             a = np.linspace(0, 2 * np.pi, 200)
             ax.plot(1e3 * (rub.centre[0] + rub.clearance * np.cos(a)), 1e3 * (rub.centre[1] + rub.clearance * np.sin(a)),
                     "k--", lw=0.8)
+        if brg is not None and rub is None:         # the bearing's clearance circle (journal relative to it)
+            a = np.linspace(0, 2 * np.pi, 200)
+            ax.plot(1e3 * brg.clearance * np.cos(a), 1e3 * brg.clearance * np.sin(a), "k--", lw=0.8)
         ax.set_aspect("equal")
         ax.set_xlim(-lim, lim)
         ax.set_ylim(-lim, lim)
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
     axes[0].set_ylabel("z [mm]")
-    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)", fontsize=10)
+    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)"
+                 + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)

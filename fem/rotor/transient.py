@@ -506,8 +506,8 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
             progress(t1 / t_end)
     E_now = _mechanical(q, v, Ks_prev)         # steps >= 1: Ks_prev is the last step's stiffness
     return Trajectory(t=np.array(rec_t), eta=np.array(rec_q).reshape(-1, n), eta_dot=np.array(rec_v).reshape(-1, n),
-                      normal_force=np.array(rec_N).reshape(-1, nc), slip=np.array(rec_s).reshape(-1, nc),
-                      in_contact=np.array(rec_c, dtype=bool).reshape(-1, nc), events=events, works=works,
+                      normal_force=np.array(rec_N).reshape(len(rec_t), nc), slip=np.array(rec_s).reshape(len(rec_t), nc),
+                      in_contact=np.array(rec_c, dtype=bool).reshape(len(rec_t), nc), events=events, works=works,
                       energy_start=E0, energy_end=E_now, stopped=None, steps=steps,
                       max_penetration=np.maximum(pen, 0.0),
                       warnings=[f"{unconverged} steps where the block Gauss-Seidel over simultaneous contacts did not "

@@ -1,7 +1,7 @@
 """The spectrum of a run-up's orbit against speed (cascade / waterfall) and the onset of oil whirl/whip.
 
-**Cascade.**  The orbit r = y + i z at a probe is cut into windows (Hann, 75 % overlap) and each
-window's complex spectrum is taken: positive frequencies are forward whirl, negative ones
+**Cascade.**  The orbit r = y + i z at a probe is cut into windows (Hann, 75 % overlap; zero-padded
+4x) and each window's complex spectrum is taken: positive frequencies are forward whirl, negative ones
 backward whirl (Muszynska, *Rotordynamics* (2005) §3: the full spectrum).  Each window is labelled
 with the speed at its centre, so the cascade shows the synchronous line 1x, its harmonics, and
 a subsynchronous line when the rotor whirls at its own frequency.
@@ -14,9 +14,10 @@ unbalance response is filtered out).  The component is isolated by a zero-phase 
 (Butterworth, ``scipy.signal.sosfiltfilt``) around the dominant subsynchronous frequency of the
 last windows, its envelope is the modulus of the analytic signal (Hilbert), and the minimum is
 refined by a parabola through log a(t) over the samples around it.  Reported: the onset speed,
-the whirl frequency there and at the end of the run (oil whip: it locks onto the rotor's first
-natural frequency, about its first critical speed, while the speed goes on rising) and the
-amplitude growth after the onset.
+the whirl frequency there and at the end of the run (oil whip: it stays near the rotor's first
+forward natural frequency, which the films stiffen as the orbit grows, while the speed goes on
+rising; on stiff films that is about the first critical speed) and the amplitude growth after the
+onset (the envelope is NaN over the filter's edge transients).
 """
 from __future__ import annotations
 
@@ -51,7 +52,7 @@ class WhirlOnset:
     """The subsynchronous whirl of a run-up at a probe: ``onset_speed`` (rad/s; None: the
     subsynchronous amplitude never turns to growth), the ``whirl_frequency`` there and
     ``final_frequency`` at the end (rad/s), their ratios to the speed, the amplitude ``growth``
-    (end / minimum), and the envelope (``t``, ``envelope``) it was read from."""
+    (end / minimum), and the envelope (``t``, ``envelope``; NaN at the filter's edges) it was read from."""
 
     probe_x: float
     onset_speed: float | None
@@ -101,12 +102,13 @@ def cascade(result, probe_x: float | None = None, window_revolutions: float = 16
     step = max(1, n // 4)
     r = result.orbit_y[:, k] + 1j * result.orbit_z[:, k]
     win = np.hanning(n)
-    freq = np.fft.fftshift(np.fft.fftfreq(n, dt)) * 2 * math.pi
+    nfft = 4 * n                                     # zero-padded 4x: the peaks drawn smoothly (same resolution)
+    freq = np.fft.fftshift(np.fft.fftfreq(nfft, dt)) * 2 * math.pi
     rows, tc, sc = [], [], []
     for i0 in range(0, t.size - n + 1, step):
         seg = r[i0:i0 + n]
         seg = seg - seg.mean()                       # the static position (the journal's operating point)
-        F = np.fft.fftshift(np.fft.fft(seg * win)) * 2.0 / win.sum()
+        F = np.fft.fftshift(np.fft.fft(seg * win, nfft)) * 2.0 / win.sum()
         rows.append(np.abs(F))
         tc.append(t[i0 + n // 2])
         sc.append(result.speed[i0 + n // 2])
@@ -157,7 +159,9 @@ def whirl_onset(result, probe_x: float | None = None, band: tuple | None = None,
     phase = np.unwrap(np.angle(forward))
     inst = np.gradient(phase, t)
     f_onset = float(np.interp(onset_t, t, inst)) if onset_t is not None else f_peak
+    shown = np.full(t.size, np.nan)
+    shown[inner] = ei                               # the filter's edge transients are not part of the envelope
     return WhirlOnset(probe_x=float(result.probe_x[k]), onset_speed=onset_speed, onset_time=onset_t,
                       whirl_frequency=f_onset, final_frequency=float(np.median(inst[inner][-max(1, ei.size // 20):])),
-                      final_speed=float(result.speed[-1]), growth=float(ei[-1] / ei[j]), t=t, envelope=env,
+                      final_speed=float(result.speed[-1]), growth=float(ei[-1] / ei[j]), t=t, envelope=shown,
                       band=(float(lo), float(hi)))

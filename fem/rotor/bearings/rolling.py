@@ -173,32 +173,39 @@ class RollingBearing(Bearing):
         return self._static_load
 
     def deflection(self, cage: float = 0.0, load=None) -> np.ndarray:
-        """The shaft's position r (m) where the elements carry the static load: -F(r) = W (Newton
-        from the clearance circle along the load, steps halved while the residual grows)."""
+        """The shaft's position r (m) where the elements carry the static load, -F(r) = W: the
+        minimum of the convex potential V(r) = sum K_n <delta_j>^(n+1) / (n + 1) - W . r (trust-region
+        Newton with the exact gradient and Hessian; the Hessian is singular while one element alone
+        is engaged, which the trust region handles)."""
+        from scipy.optimize import minimize
+
         W = self.static_load() if load is None else np.asarray(load, dtype=float)
         Wn = float(np.hypot(*W))
-        if Wn == 0:
-            if self.clearance >= 0:
-                return np.zeros(2)
-            Wn, W = 0.0, np.zeros(2)
-        u = W / Wn if Wn else np.array([1.0, 0.0])
+        if Wn == 0 and self.clearance >= 0:
+            return np.zeros(2)
         Kn, n = self.element_constant(), self.exponent
-        # start: the most loaded element alone carrying 4.37 W / Z (Stribeck) beyond the clearance
-        r = u * (max(self.clearance, 0.0) + (4.37 * Wn / (self.elements * Kn)) ** (1.0 / n) if Wn else 0.0)
-        for _ in range(200):
-            res = -self.elastic_force(*r, cage) - W
-            if np.linalg.norm(res) <= 1e-12 * max(Wn, 1e-300) or (Wn == 0 and np.linalg.norm(res) < 1e-300):
-                return r
-            K = self.elastic_stiffness(*r, cage)
-            try:
-                step = -np.linalg.solve(K, res)
-            except np.linalg.LinAlgError:
-                step = u * max(abs(self.clearance), 1e-9)
-            lam = 1.0
-            while lam > 1e-8 and np.linalg.norm(-self.elastic_force(*(r + lam * step), cage) - W) >= np.linalg.norm(res):
-                lam *= 0.5
-            r = r + lam * step
-        raise SolverError(f"rolling-element bearing at x = {self.x:g} m: no static equilibrium under {W} N")
+        psi = self.angles(cage)
+        c, s = np.cos(psi), np.sin(psi)
+        L = max(abs(self.clearance), (4.37 * max(Wn, 1e-300) / (self.elements * Kn)) ** (1.0 / n), 1e-12)
+
+        def V(x):                                   # in units of L (scaled for the optimiser)
+            d = np.maximum(L * (x[0] * c + x[1] * s) - self.clearance, 0.0)
+            return (Kn * np.sum(d ** (n + 1)) / (n + 1) - L * (W @ x)) / (Wn * L if Wn else Kn * L ** (n + 1))
+
+        def grad(x):
+            return (-self.elastic_force(*(L * x), cage) - W) * L / (Wn * L if Wn else Kn * L ** (n + 1))
+
+        def hess(x):
+            return self.elastic_stiffness(*(L * x), cage) * L * L / (Wn * L if Wn else Kn * L ** (n + 1))
+
+        u = W / Wn if Wn else np.array([1.0, 0.0])
+        x0 = u * (max(self.clearance, 0.0) / L + 1.0)
+        res = minimize(V, x0, jac=grad, hess=hess, method="trust-exact", options={"gtol": 1e-13, "maxiter": 500})
+        r = L * res.x
+        if np.linalg.norm(-self.elastic_force(*r, cage) - W) > 1e-8 * max(Wn, Kn * L ** n):
+            raise SolverError(f"rolling-element bearing at x = {self.x:g} m: no static equilibrium under {W} N "
+                              f"({res.message})")
+        return r
 
     def linearised_stiffness(self) -> np.ndarray:
         """The stiffness at the static load, averaged over the cage positions of one element pitch."""
