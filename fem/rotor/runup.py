@@ -60,7 +60,8 @@ class RunUp:
     retained modes at rest (plus 2 attachment shapes per rub); ``time_step`` of Moreau-Jean (None:
     a 40th of the shortest retained period); ``output_step`` (None: a 64th of the shortest
     revolution, at most 20 000 samples); ``rtol`` of the event-located integrator; ``start``
-    "steady" (the linear synchronous response at ``speed_start``, no contact force) or "rest";
+    "steady" (the linear synchronous response at ``speed_start``, no contact force; on bearings
+    computed from their geometry about their static state, with their laws linearised there) or "rest";
     ``max_events``: a chattering contact stops the run beyond this many events; ``integrator`` of
     ``method = "event"``: "DOP853" (explicit), "LSODA" (stiff phases by BDF), "auto" (LSODA when
     bearings computed from their geometry act, whose films are stiff on light journals; else DOP853)."""

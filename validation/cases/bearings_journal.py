@@ -72,7 +72,8 @@ def long_limit():
     src = "Sommerfeld long bearing, half-Sommerfeld film (validation.analytic.bearings; checked by quadrature)"
     Fr, Ft = ref.sommerfeld_forces(EPS, 0.5)                   # per unit of L/R
     Fq = ref.sommerfeld_forces_by_quadrature(EPS)
-    out = [check(name, "quadrature of Sommerfeld's pressure", "closed-form radial force per unit length", Fq[0], Fr, 1e-12),
+    out = [check(name, "quadrature of Sommerfeld's pressure", "closed-form radial force per unit length", Fq[0], Fr,
+                 1e-12),
            check(name, "quadrature of Sommerfeld's pressure", "closed-form tangential force per unit length", Fq[1], Ft,
                  1e-12)]
     W0 = math.hypot(Fr, Ft)
@@ -252,7 +253,8 @@ def jeffcott_threshold():
     return [check(name, src, "threshold speed [rad/s]", w_ref, res.threshold_rad_s, 1e-5),
             check(name, src, "whirl frequency at the threshold [rad/s]", nu_ref, res.frequency_rad_s, 1e-5),
             claim(name, src, "the unstable mode whirls forward", res.whirl == "forward"),
-            check(name, "Ocvirk's load capacity", "eccentricity ratio at the threshold", eps_ref, st.eccentricity, 1e-9),
+            check(name, "Ocvirk's load capacity", "eccentricity ratio at the threshold", eps_ref, st.eccentricity,
+                  1e-9),
             check(name, "Friswell et al. (2010) short-bearing stiffness", "K_zy c / W (largest cross term)",
                   a[1, 0], st.K[1, 0] * 50e-6 / W, 1e-7),
             check(name, "Friswell et al. (2010) short-bearing damping", "C_zz c omega / W",

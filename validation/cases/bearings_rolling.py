@@ -80,7 +80,8 @@ def load_zone():
         Fc = _cage_average(cb, 0.0, -dr)
         dmax = dr - 0.3 * dr
         out.append(check(name, "Sjoevall's integral J_r(eps) by quadrature", f"{element}s, clearance 0.3 delta_r: "
-                         "F_r / (Z K_n delta_max^n)", ref.sjovall(eps, n), math.hypot(*Fc) / (9 * 1e10 * dmax ** n), 1e-6))
+                         "F_r / (Z K_n delta_max^n)", ref.sjovall(eps, n),
+                         math.hypot(*Fc) / (9 * 1e10 * dmax ** n), 1e-6))
         W = 2000.0
         many = RollingBearing(0.0, element=element, elements=400, contact_stiffness=1e10, clearance=0.0, load=W)
         delta = (W / (400 * 1e10 * ref.sjovall(0.5, n))) ** (1 / n)

@@ -527,7 +527,7 @@ class RunUpTable(Table):
     rtol: Annotated[float, Field(ge=1e-13, le=1e-3)] = 1e-8
     """Relative tolerance of the event-located integrator."""
     start: Literal["steady", "rest"] = "steady"
-    """steady: the linear synchronous orbit at speed_start; rest: zero displacement and velocity."""
+    """steady: the linear synchronous orbit at speed_start (about the static state of bearings computed from their geometry); rest: zero displacement and velocity."""
     max_events: Count = 100_000
     """A chattering contact stops the run beyond this many contact events."""
     integrator: Literal["auto", "DOP853", "LSODA"] = "auto"

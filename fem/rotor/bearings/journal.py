@@ -115,7 +115,8 @@ class JournalBearing(Bearing):
         checks.choice(where, "cavitation", self.cavitation, CAVITATION)
         checks.choice(where, "interpolation", self.interpolation, ("linear", "pchip"))
         if self.speeds is None:
-            raise ModelError(where, "speeds", None, "the speeds of the coefficient table (rad/s, >= 2, increasing, > 0)")
+            raise ModelError(where, "speeds", None,
+                             "the speeds of the coefficient table (rad/s, >= 2, increasing, > 0)")
         grid = self.speed_grid
         if grid.size < 2 or not np.all(np.isfinite(grid)) or np.any(np.diff(grid) <= 0) or grid[0] <= 0:
             raise ModelError(where, "speeds", list(grid), "at least two increasing speeds > 0 (rad/s): the film "
@@ -123,7 +124,8 @@ class JournalBearing(Bearing):
         mesh = tuple(self.mesh)
         if len(mesh) != 2 or any(isinstance(m, bool) or not isinstance(m, (int, np.integer)) for m in mesh) \
                 or mesh[0] < 12 or mesh[1] < 2:
-            raise ModelError(where, "mesh", list(mesh), "[elements around (>= 12), elements along the half length (>= 2)]")
+            raise ModelError(where, "mesh", list(mesh),
+                             "[elements around (>= 12), elements along the half length (>= 2)]")
         for i, g in enumerate(self.grooves):
             if np.size(g) != 2:
                 raise ModelError(where, "grooves", list(map(list, self.grooves)), "[[centre, width], ...] in rad")
@@ -196,7 +198,8 @@ class JournalBearing(Bearing):
     def sommerfeld(self, speed: float, load: float | None = None) -> float:
         """S = mu N L D (R/c)^2 / W (N in rev/s)."""
         W = float(np.hypot(*self.static_load())) if load is None else float(load)
-        return self.viscosity * speed / (2 * math.pi) * self.length * self.diameter * (self.radius / self.clearance) ** 2 / W
+        N = speed / (2 * math.pi)
+        return self.viscosity * N * self.length * self.diameter * (self.radius / self.clearance) ** 2 / W
 
     def operating_point(self, speed: float, start=None) -> JournalState:
         """Equilibrium, Sommerfeld number and coefficients at ``speed`` (rad/s, > 0)."""

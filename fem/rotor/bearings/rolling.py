@@ -93,7 +93,8 @@ class RollingBearing(Bearing):
                     checks.bounded(where, key, getattr(self, key), (">", 0.5), ("<", 1.0),
                                    "groove radius / ball diameter (about 0.515-0.53)")
             elif self.roller_length is None:
-                raise ModelError(where, "roller_length", None, "the rollers' effective length (m), or contact_stiffness")
+                raise ModelError(where, "roller_length", None,
+                                 "the rollers' effective length (m), or contact_stiffness")
             else:
                 checks.positive(where, "roller_length", self.roller_length, "m")
         for key in ("k_axial", "c_axial"):
@@ -212,7 +213,8 @@ class RollingBearing(Bearing):
         key = ("K", tuple(self.static_load()), self.element_constant(), self.clearance, self.elements, self.exponent)
         if key not in self._cache:
             pitch = 2 * math.pi / self.elements
-            Ks = [self.elastic_stiffness(*self.deflection(c), c) for c in pitch * np.arange(CAGE_POSITIONS) / CAGE_POSITIONS]
+            cages = pitch * np.arange(CAGE_POSITIONS) / CAGE_POSITIONS
+            Ks = [self.elastic_stiffness(*self.deflection(c), c) for c in cages]
             self._cache[key] = np.mean(Ks, axis=0)
         return self._cache[key]
 
@@ -225,7 +227,8 @@ class RollingBearing(Bearing):
         K = self.linearised_stiffness()
         c = float(self.damping)
         if not (K[0, 0] > 0 or K[1, 1] > 0 or c > 0):
-            raise ModelError(f"[[rotor.rolling_bearing]] at x = {self.x:g} m", "load", float(np.hypot(*self.static_load())),
+            raise ModelError(f"[[rotor.rolling_bearing]] at x = {self.x:g} m", "load",
+                             float(np.hypot(*self.static_load())),
                              "a static load (or a preload: clearance < 0) that engages some elements, or damping > 0: "
                              "unloaded with clearance, the bearing has no linear stiffness")
         return {"kyy": np.array([K[0, 0]]), "kyz": np.array([K[0, 1]]), "kzy": np.array([K[1, 0]]),
