@@ -208,3 +208,26 @@ def test_whip_example_runup_onset(tmp_path):
     assert d["whirl"]["final_ratio"] < 0.55 and d["whirl"]["growth"] > 100
     assert d["energy"]["relative_error"] < 1e-4
     assert (tmp_path / "cascade.png").exists() and (tmp_path / "whirl_onset.png").exists()
+
+
+def test_bearing_on_a_pedestal_and_a_rub_in_one_run():
+    """A journal bearing on a pedestal acts on the relative motion (its reaction moves the pedestal), and a
+    rub ring works alongside the films in the same run."""
+    from fem.rotor import Pedestal, Rub, Unbalance
+
+    grid = list(np.linspace(600.0, 1500.0, 19))
+    b = [JournalBearing(0.0, diameter=0.05, length=0.0125, clearance=50e-6, viscosity=0.01, film="short",
+                        speeds=grid, pedestal="housing"),
+         JournalBearing(0.5, diameter=0.05, length=0.0125, clearance=50e-6, viscosity=0.01, film="short", speeds=grid)]
+    rotor = Rotor([ShaftSegment(0.5, 2, 0.05, MASSLESS)], discs=[Disc(0.0, 4.0), Disc(0.25, 20.0), Disc(0.5, 4.0)],
+                  bearings=b, pedestals=[Pedestal("housing", 10.0, 5e7, 5e7, 1e3, 1e3)])
+    res = run_up(rotor, RunUp(800.0, 800.0, 0.02, modes=8, start="steady"), [Unbalance(0.25, 1e-4)],
+                 [Rub(0.25, 25e-6, stiffness=1e7, friction=0.1)], probes=[0.0])
+    st = b[0].operating_point(800.0)
+    hist = res.bearings[0]
+    assert res.stopped is None
+    assert hist.eccentricity[0] == pytest.approx(st.eccentricity, rel=5e-2)    # plus the synchronous orbit
+    rs = assemble_rotor(rotor)
+    iv = int(np.flatnonzero(rs.dof_field == "pedestal_w")[0])
+    assert iv >= 0 and res.rubs[0].contact_phases >= 1
+    assert abs(res.energy_error) < 1e-4

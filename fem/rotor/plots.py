@@ -240,14 +240,16 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     ax.set_ylabel("orbit radius [mm]")
     ax.legend(fontsize=8)
     ax.set_title(title or f"run-up ({res.method})")
-    ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8, va="top")
+    if res.rubs:
+        ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8,
+                va="top")
     if res.rubs or not res.bearings:
         ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
     else:                                   # bearings computed from their geometry: the journals' eccentricity
         for b in res.bearings:
             ax2.plot(s, b.eccentricity, lw=0.8, label=b.name)
         ax2.set_ylabel("bearing eccentricity ratio e/c [-]")
-        ax.text(0.01, 0.90, "orbit radius about the bearing centres' line (static sag included)", transform=ax.transAxes,
+        ax.text(0.01, 0.97, "orbit radius about the bearing centres' line (static sag included)", transform=ax.transAxes,
                 fontsize=8, va="top")
     ax2.set_xlabel("speed [rev/min]")
     if res.rubs or res.bearings:
