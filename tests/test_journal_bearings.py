@@ -221,7 +221,7 @@ def test_bearing_on_a_pedestal_and_a_rub_in_one_run():
          JournalBearing(0.5, diameter=0.05, length=0.0125, clearance=50e-6, viscosity=0.01, film="short", speeds=grid)]
     rotor = Rotor([ShaftSegment(0.5, 2, 0.05, MASSLESS)], discs=[Disc(0.0, 4.0), Disc(0.25, 20.0), Disc(0.5, 4.0)],
                   bearings=b, pedestals=[Pedestal("housing", 10.0, 5e7, 5e7, 1e3, 1e3)])
-    res = run_up(rotor, RunUp(800.0, 800.0, 0.02, modes=8, start="steady"), [Unbalance(0.25, 1e-4)],
+    res = run_up(rotor, RunUp(800.0, 800.0, 0.01, modes=8, start="steady"), [Unbalance(0.25, 1e-4)],
                  [Rub(0.25, 25e-6, stiffness=1e7, friction=0.1)], probes=[0.0])
     st = b[0].operating_point(800.0)
     hist = res.bearings[0]

@@ -323,9 +323,10 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     for j, (r, c) in enumerate(zip(rubs, laws)):
         y, z = traj.eta @ c.g_y, traj.eta @ c.g_z
         rho = c.relative(y, z)[2]
-        first = next((e for e in traj.events if e["rub"] == c.name and e["kind"] == "contact"), None)
-        if first is None and traj.in_contact[:1, j].any():
+        if traj.in_contact[:1, j].any():            # in contact from the start: that is the first contact
             first = {"t": 0.0, "kind": "contact", "rub": c.name, "speed_rad_s": float(ramp.start)}
+        else:
+            first = next((e for e in traj.events if e["rub"] == c.name and e["kind"] == "contact"), None)
         regime = _regime(traj.t, speed, traj.in_contact[:, j])
         hist.append(RubHistory(name=c.name, x=float(r.x), clearance=c.clearance, centre=c.centre, normal_force=traj.normal_force[:, j],
                                slip=traj.slip[:, j], in_contact=traj.in_contact[:, j], radius=rho, regime=regime,

@@ -261,39 +261,47 @@ def jeffcott_threshold():
                   bb[1, 1], st.C[1, 1] * 50e-6 * w_ref / W, 1e-7)]
 
 
+def _whip_checks(name: str, unb: float) -> list:
+    rotor = _jeffcott()
+    rs = assemble_rotor(rotor)
+    w_ref, nu_ref = _jeffcott_reference(rotor)
+    res = run_up(rs, RunUp(0.85 * w_ref, 1.15 * w_ref, 1.0, modes=6, start="rest", integrator="DOP853"),
+                 [Unbalance(0.25, unb)] if unb else [], probes=[0.25])
+    on = whirl_onset(res, 0.25)
+    tag = f"unbalance {unb:g} kg m"
+    src = "closed-form linear threshold (bearing-jeffcott-threshold)"
+    out = [claim(name, src, f"{tag}: the run ends and shows an onset", res.stopped is None
+                 and on.onset_speed is not None, note=str(res.stopped))]
+    if on.onset_speed is None:
+        return out
+    return out + [check(name, src, f"{tag}: whirl onset speed [rad/s]", w_ref, on.onset_speed, 0.02),
+                  check(name, src, f"{tag}: whirl frequency at the onset [rad/s]", nu_ref, on.whirl_frequency, 0.02),
+                  claim(name, "oil whip: subsynchronous whirl near the natural frequency",
+                        f"{tag}: whirl / speed at the end below 0.55", on.final_frequency / on.final_speed < 0.55,
+                        note=f"{on.final_frequency / on.final_speed:.4f}; growth {on.growth:.3g}"),
+                  check(name, "energy balance (works of every force integrated with the state)",
+                        f"{tag}: relative balance error", 0.0, res.energy_error, 5e-8, scale=1.0)]
+
+
 @case("bearing-whip-runup", group="bearings")
 def whip_runup():
     """A run-up of the Jeffcott rotor of bearing-jeffcott-threshold through its stability threshold
     (0.85 -> 1.15 of the closed-form threshold in 1 s, starting from rest in the bearings: the
     journals lift off, which seeds the free whirl), with the nonlinear short-bearing film force in
-    time and no unbalance, then with a small one (2e-5 kg m).  The subsynchronous whirl decays below
-    the threshold and grows above it; the minimum of its band-passed envelope is the onset
-    (fem.rotor.whirl_spectrum).  Checks: onset speed within 2 % of the closed-form linear threshold
-    (the issue's requirement; measured ~1e-4 without unbalance: the ramp is slow against the growth
-    rate, ~15 /s at +-10 %), the whirl frequency at the onset within 2 % of the linear whirl
-    frequency there, and the whirl locking near the rotor's natural frequency (ratio to the speed
-    below 0.55 at the end: subsynchronous whip); the energy balance to 5e-8 (DOP853 at rtol 1e-8: measured ~5e-9).
-    LSODA (the default with such bearings) gives the same onset to ~1e-6 with a balance of ~1e-6."""
-    name = "bearing-whip-runup"
-    rotor = _jeffcott()
-    rs = assemble_rotor(rotor)
-    w_ref, nu_ref = _jeffcott_reference(rotor)
-    out = []
-    for unb in (0.0, 2e-5):
-        res = run_up(rs, RunUp(0.85 * w_ref, 1.15 * w_ref, 1.0, modes=6, start="rest", integrator="DOP853"),
-                     [Unbalance(0.25, unb)] if unb else [], probes=[0.25])
-        on = whirl_onset(res, 0.25)
-        tag = f"unbalance {unb:g} kg m"
-        src = "closed-form linear threshold (bearing-jeffcott-threshold)"
-        out.append(claim(name, src, f"{tag}: the run ends and shows an onset", res.stopped is None
-                         and on.onset_speed is not None, note=str(res.stopped)))
-        if on.onset_speed is None:
-            continue
-        out.append(check(name, src, f"{tag}: whirl onset speed [rad/s]", w_ref, on.onset_speed, 0.02))
-        out.append(check(name, src, f"{tag}: whirl frequency at the onset [rad/s]", nu_ref, on.whirl_frequency, 0.02))
-        out.append(claim(name, "oil whip: subsynchronous whirl near the natural frequency",
-                         f"{tag}: whirl / speed at the end below 0.55", on.final_frequency / on.final_speed < 0.55,
-                         note=f"{on.final_frequency / on.final_speed:.4f}; growth {on.growth:.3g}"))
-        out.append(check(name, "energy balance (works of every force integrated with the state)",
-                         f"{tag}: relative balance error", 0.0, res.energy_error, 5e-8, scale=1.0))
-    return out
+    time and no unbalance.  The subsynchronous whirl decays below the threshold and grows above it;
+    the minimum of its band-passed envelope is the onset (fem.rotor.whirl_spectrum).  Checks: onset
+    speed within 2 % of the closed-form linear threshold (the issue's requirement; measured ~2e-4:
+    the ramp is slow against the growth rate, ~15 /s at +-10 %), the whirl frequency at the onset
+    within 2 % of the linear whirl frequency there, and the whirl locking near the rotor's natural
+    frequency (ratio to the speed below 0.55 at the end: subsynchronous whip); the energy balance to
+    5e-8 (DOP853 at rtol 1e-8: measured ~5e-9).  LSODA (the default with such bearings) gives the same
+    onset to ~1e-6 with a balance of ~1e-6."""
+    return _whip_checks("bearing-whip-runup", 0.0)
+
+
+@case("bearing-whip-runup-unbalance", group="bearings", slow=True)
+def whip_runup_unbalance():
+    """bearing-whip-runup with an unbalance of 2e-5 kg m on the disc: the synchronous response is band-
+    passed out of the whirl envelope; the same checks and tolerances (measured: onset 3.3e-3 early; a
+    ten times larger unbalance moves the onset itself, by -7 %, and is not a test of the method)."""
+    return _whip_checks("bearing-whip-runup-unbalance", 2e-5)
