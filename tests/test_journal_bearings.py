@@ -186,6 +186,10 @@ def test_whip_example_campbell_and_file_bad_input(tmp_path):
     d = json.loads(j.read_text())
     ld = np.array([[np.nan if v is None else v for v in col] for col in d["log_decrement"]])
     assert (ld[:, 0] > 0).any() and (np.nanmin(ld[:, -1]) < 0)     # a mode turns unstable within the range
+    f = tmp_path / "f.json"
+    assert main(["forced", str(EX / "rotor_journal_whip.toml"), "--json", str(f)]) == 0
+    peaks = json.loads(f.read_text())["peaks"]
+    assert peaks and 3000 < peaks[0]["speed_rad_s"] * 30 / math.pi < 9000     # the first critical, on the films
     bad = (EX / "rotor_journal_whip.toml").read_text().replace("viscosity = 0.01", "viscosity = -0.01", 1)
     p = tmp_path / "bad.toml"
     p.write_text(bad)
