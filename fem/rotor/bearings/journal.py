@@ -40,6 +40,8 @@ from .short_film import ShortFilm
 
 FILM_MODELS = ("reynolds", "short")
 MAX_ECCENTRICITY = 0.98
+_TABLES: dict = {}
+"""Operating points per (speeds, load, geometry, film): computed once per process (at most 32 kept)."""
 
 
 @dataclass
@@ -260,14 +262,16 @@ class JournalBearing(Bearing):
         grid = self.speed_grid if speeds is None else np.asarray(speeds, dtype=float)
         key = ("states", tuple(grid), tuple(self.static_load()), self.viscosity, self.clearance, self.diameter,
                self.length, self.film, self.cavitation, tuple(map(tuple, self.grooves)), tuple(self.mesh))
-        if key not in self._cache:
+        if key not in _TABLES:                     # shared by identical bearings (the two ends of a rotor)
             out, start = [], None
             for s in grid:
                 st = self.operating_point(float(s), start)
                 start = st.position / self.clearance
                 out.append(st)
-            self._cache[key] = out
-        return self._cache[key]
+            if len(_TABLES) >= 32:
+                _TABLES.pop(next(iter(_TABLES)))
+            _TABLES[key] = out
+        return _TABLES[key]
 
     def table(self) -> dict[str, np.ndarray]:
         """The 8 coefficients over ``speeds`` (computed at the operating point of every speed)."""
