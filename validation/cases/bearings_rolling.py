@@ -108,7 +108,7 @@ def clearance_response():
     scipy's LSODA at rtol 1e-11).  The journals drop into the clearance and the balls engage and
     release as the orbit grows (the clearance law is the nonlinearity).  Tolerance 1e-6 of the largest
     disc orbit radius: both integrators' tolerances with margin (the reduced rotor spans the three
-    masses exactly; measured 1.5e-7 against LSODA, 2e-8 against Radau at rtol 1e-11, which takes
+    masses exactly; measured 6e-8 ... 1.5e-7 against LSODA, 2e-8 against Radau at rtol 1e-11, which takes
     minutes)."""
     name = "bearing-rolling-clearance-response"
     d, Ls, E, G = 0.03, 0.4, 211e9, 81.2e9
