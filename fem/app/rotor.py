@@ -379,7 +379,36 @@ def simulate(args) -> int:
             cas, onset = whirl
             print(f"wrote {plot_cascade(cas, out / 'cascade.png', onset=onset, title=study.title)}")
             print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png')}")
+        for p in _run_up_spectra(study, res, out, cascade_done=whirl is not None):
+            print(f"wrote {p}")
     return 1 if doc.get("stopped") else 0
+
+
+def _run_up_spectra(study, res, out, cascade_done: bool) -> list:
+    """The run-up Bode plot (1x tracking filter, the steady unbalance response of the linear rotor
+    dashed) and, unless the whirl analysis drew it, the cascade of the probe that moves most."""
+    from ..rotor.plots import plot_cascade, plot_run_up_bode
+    from ..rotor.runup_tracking import synchronous_response
+    from ..rotor.whirl_spectrum import cascade
+
+    written = []
+    if res.t.size < 64 or np.ptp(res.speed) <= 0:
+        print("note: no run-up Bode plot or cascade: the speed does not change (or the run is too short)",
+              file=sys.stderr)
+        return written
+    sync = synchronous_response(res)
+    steady = None
+    lo, hi = max(float(sync.speed_rad_s.min()), 1e-3 * float(sync.speed_rad_s.max())), float(sync.speed_rad_s.max())
+    if study.doc.unbalance and hi > lo:
+        from ..modelfile.build.rotor import _unbalances
+        from ..rotor import Probe, unbalance_response
+
+        steady = unbalance_response(study.rotor, _unbalances(study.doc), np.linspace(lo, hi, 300),
+                                    probes=[Probe(float(x), "major") for x in res.probe_x], find_peaks=False)
+    written.append(plot_run_up_bode(sync, out / "run_up_bode.png", title=study.title, steady=steady))
+    if not cascade_done:
+        written.append(plot_cascade(cascade(res), out / "cascade.png", title=study.title))
+    return written
 
 
 def _whirl(res):

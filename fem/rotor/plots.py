@@ -505,3 +505,34 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
     fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)"
                  + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)
+
+
+def plot_run_up_bode(sync, path, *, title: str = "", steady=None, names=None) -> Path:
+    """Run-up Bode plot: the 1x orbit's semi-major axis (um, log) and phase lag (deg, unwrapped) of
+    every probe against speed (rev/min) from a run-up's tracking filter
+    (:func:`fem.rotor.runup_tracking.synchronous_response`); ``steady``: an
+    :class:`UnbalanceResponse` at the same probes (major) drawn dashed for comparison (the linear
+    rotor without contact)."""
+    s = sync.speed_rad_s * RPM
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8.5, 6.6), sharex=True)
+    amp, lag = sync.amplitude, sync.phase_lag_deg
+    for k, x in enumerate(sync.probe_x):
+        name = names[k] if names else f"x = {x:g} m"
+        line, = a1.semilogy(s, np.maximum(amp[:, k], 1e-300) * 1e6, lw=1.4, label=f"{name}: run-up, 1x")
+        a2.plot(s, unwrapped_lag(lag[:, k]), lw=1.4, color=line.get_color())
+        if steady is not None:
+            p = steady.probes[k]
+            a1.semilogy(steady.speeds_rad_s * RPM, np.maximum(p.amplitude, 1e-300) * 1e6, "--", lw=1.0,
+                        color=line.get_color(), label=f"{name}: steady state (linear, no contact)")
+            a2.plot(steady.speeds_rad_s * RPM, unwrapped_lag(p.phase_lag_deg), "--", lw=1.0, color=line.get_color())
+    a1.set_ylabel("1x amplitude (orbit semi-major axis) [um]")
+    a1.set_title(_wrap(f"Run-up Bode plot: {title}" if title else "Run-up Bode plot", 80)
+                 + f"\ntracking filter: {sync.revolutions:g}-revolution Hann window on the shaft angle", fontsize=9.5)
+    a1.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
+    a1.grid(alpha=0.3, which="both")
+    a2.set_ylabel("1x phase lag [deg]")
+    a2.set_xlabel("speed [rev/min]")
+    a2.set_xlim(s.min(), s.max())
+    a2.grid(alpha=0.3)
+    fig.tight_layout()
+    return _layout(fig, path)
