@@ -31,6 +31,10 @@ LEADER_FROM = 12.0          # points: offsets at least this far get a leader lin
 
 
 def _renderer(fig):
+    if not hasattr(fig.canvas, "get_renderer"):        # a Figure made without pyplot: give it an Agg canvas
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        FigureCanvasAgg(fig)
     return fig.canvas.get_renderer()
 
 
@@ -129,8 +133,8 @@ def place_labels(ax, anchors, texts, *, offsets=None, avoid=None, inside: bool =
 def overlapping_texts(fig, tolerance: float = 0.5) -> list[tuple[str, str]]:
     """Pairs of visible texts of ``fig`` whose rendered boxes overlap by more than ``tolerance``
     square pixels (draws the figure first)."""
-    fig.canvas.draw()
     renderer = _renderer(fig)
+    fig.canvas.draw()
     items = [(t.get_text(), _text_box(t, renderer)) for t in visible_texts(fig)]
     return [(a[0], b[0]) for a, b in itertools.combinations(items, 2) if _overlap(a[1], b[1]) > tolerance]
 
@@ -141,6 +145,7 @@ UNIT = re.compile(r"\[[^\]]+\]")
 def axis_labels_without_unit(fig) -> list[str]:
     """Axes (by title or index) with visible tick labels on x or y but no axis label of the form
     ``quantity [unit]`` there (dimensionless quantities: ``[-]``)."""
+    _renderer(fig)
     fig.canvas.draw()
     bad = []
     for i, ax in enumerate(fig.axes):
