@@ -102,7 +102,8 @@ def main(out_dir: str | None = None, verbose: bool = True) -> dict:
 
         d = Path(out_dir)
         d.mkdir(parents=True, exist_ok=True)
-        plots.plot_campbell(camp, d / "rotor_campbell.png", title="Friswell 5.9.5 (damped bearings), 24 elements")
+        plots.plot_campbell(camp, d / "rotor_campbell.png", title="Friswell 5.9.5 (damped bearings), 24 elements",
+                            operating_range=op)
         plots.plot_bode(resp, d / "rotor_bode.png", probes=[1, 2], title="unbalance 1e-4 kg m at disc 2")
         plots.plot_polar(resp, d / "rotor_polar.png", probe=1)
         i = int(np.argmin(np.abs(resp.speeds_rad_s - peaks[0].speed_rad_s))) if peaks else 0

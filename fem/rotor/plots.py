@@ -45,7 +45,9 @@ def _layout(fig, path) -> Path:
     return path
 
 
-MODE_COLOURS = plt.get_cmap("tab10").colors
+#: one colour per tracked mode: tab10 without its grey (the excitation lines are grey) ...
+MODE_COLOURS = tuple(c for i, c in enumerate(plt.get_cmap("tab10").colors) if i != 7) + \
+    tuple(c for i, c in enumerate(plt.get_cmap("tab20b").colors) if i % 4 == 1)    # ... then darker shades
 WHIRL_LINE = {"forward": "-", "backward": "--", "mixed": "-.", "planar": ":", "none": "-"}
 WHIRL_TAG = {"forward": "F", "backward": "B", "mixed": "M", "planar": "P", "none": ""}
 
