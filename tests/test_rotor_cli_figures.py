@@ -294,3 +294,17 @@ def test_render_rotor_file_png_and_gif(can_render, tmp_path):
     frames = imageio.mimread(out / "mode01_forward.gif")
     assert len(frames) == 24 and difference_fraction(frames[0][..., :3], frames[12][..., :3]) > 0.002
     assert json.loads((out / "modes.json").read_text())["schema"] == "drivefem.modal"
+
+
+def test_static_of_a_full_model_and_map_bearing_names(tmp_path, capsys):
+    """A 'full' model (axial, torsion free: unloaded, they stay at rest) has the lateral model's sag;
+    [critical_map] bearings must name bearings of the file."""
+    j = tmp_path / "s.json"
+    assert main(["static", str(EX / "rotor_friswell.toml"), "--json", str(j)]) == 0
+    assert json.loads(j.read_text())["max_deflection_m"] == pytest.approx(1443.85e-6, abs=0.01e-6)
+    doc = FAN.read_text() + '\n[critical_map]\nbearings = ["bearing NDE", "bearing X"]\n'
+    p = tmp_path / "fan.toml"
+    p.write_text(doc)
+    capsys.readouterr()
+    assert main(["critical-map", str(p)]) == 2
+    assert "bearings = 'bearing X'" in capsys.readouterr().err

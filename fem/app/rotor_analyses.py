@@ -119,7 +119,15 @@ def critical_map(args) -> int:
 
     t = study.doc.critical_map
     rotor = study.rotor.rotor
-    held = [b for b in rotor.bearings if any(np.any(b.table()[k] > 0) for k in ("kyy", "kzz"))]
+    if t is not None and t.bearings is not None:
+        names = {b.name for b in rotor.bearings}
+        for n in t.bearings:
+            if n not in names:
+                raise ModelError("[critical_map]", "bearings", n, "names of [[rotor.bearing]]s: "
+                                 + ", ".join(repr(x) for x in sorted(names) if x))
+        held = [b for b in rotor.bearings if b.name in set(t.bearings)]
+    else:
+        held = [b for b in rotor.bearings if any(np.any(b.table()[k] > 0) for k in ("kyy", "kzz"))]
     dropped = [_bearing_name(b, i) for i, b in enumerate(rotor.bearings) if b not in held]
     rotor = dataclasses.replace(rotor, bearings=held)
     ks = _stiffness_range(rotor, t)
@@ -148,7 +156,8 @@ def critical_map(args) -> int:
     if not iso_pedestals:
         print("the pedestals are anisotropic: forward and backward whirl couple, every synchronous crossing is drawn")
     if dropped:
-        print("left out of the map (no direct stiffness: seals, dampers): " + ", ".join(dropped))
+        print("left out of the map (" + ("not in [critical_map] bearings" if t is not None and t.bearings is not None
+                                         else "no direct stiffness: seals, dampers") + "): " + ", ".join(dropped))
     print(f"{'k [N/m]':>12} " + " ".join(f"{'crit ' + str(j + 1) + ' [rev/min]':>18}" for j in range(n)))
     for i in np.unique(np.linspace(0, ks.size - 1, min(ks.size, 11)).astype(int)):
         print(f"{ks[i]:12.4g} " + " ".join(f"{v * RPM:18.2f}" if np.isfinite(v) else f"{'--':>18}" for v in fwd[i]))

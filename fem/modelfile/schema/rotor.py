@@ -617,11 +617,9 @@ class CriticalMapTable(Table):
     """Stiffness values, logarithmically spaced."""
     modes: Count = 4
     """Forward critical speeds drawn (the lowest)."""
-    speed: NonNegative | None = None
-    """Speed at which constant bearings' stiffness is read for the overlay's tabulated ones, rad/s: unused
-    for constant bearings (default: the [campbell] range)."""
-    speed_rpm: NonNegative | None = None
-    """The same, rev/min."""
+    bearings: list[str] | None = None
+    """Names of the [[rotor.bearing]]s the map varies (default: every one with a positive direct stiffness);
+    the others (seals, dampers) are left out of the map."""
 
 
 class Level1StageTable(Table):
