@@ -11,8 +11,8 @@ warning states the fact without guessing.
   times it (explicit constants are often effective values of a scaled model, A = J = 1); with
   numbers, likely mm (``d = 50`` on a 1 m shaft, ``A = 2000`` for 2000 mm^2);
 * **Euler-Bernoulli on a stubby shaft**: bending with theory "euler-bernoulli" and L/d below
-  :data:`EB_SLENDERNESS` (the shear and rotary inertia it neglects matter: suggest Timoshenko) --
-  not given where the section warning already explains the ratio;
+  :data:`EB_SLENDERNESS` (the shear and rotary inertia it neglects matter: suggest Timoshenko), d the
+  largest circle or tube -- not given where the section warning already explains the ratio;
 * **a material off the range of engineering solids by orders of magnitude**: E or G outside
   [:data:`E_RANGE`] (likely MPa or GPa), rho outside [:data:`RHO_RANGE`] (likely g/cm^3 or t/mm^3) --
   for the materials of geometric sections (circle, tube) and rotors; with explicit section constants
@@ -141,7 +141,7 @@ def _section_warning(out, where, key, value, d_eq, hint_unit, length, raw, margi
     if d_eq <= margin * length:
         return False
     size = f"{key} = {_number(value)} {'m' if key in ('d', 'di', 'd_end', 'di_end') else hint_unit.replace('mm', 'm')}"
-    eq = "" if key in ("d", "di", "d_end", "di_end") else f" (a section of equivalent diameter {_number(d_eq)} m)"
+    eq = "" if key in ("d", "di", "d_end", "di_end") else f" (a section of equivalent diameter {d_eq:.3g} m)"
     text = f"{where}: {size}{eq} on a {_number(length)} m shaft: the section is larger than the whole shaft"
     if _written(raw, key):
         text += (f"; is the {'diameter' if key.startswith('d') else 'section constant'} in {hint_unit}? drivefem "
@@ -159,7 +159,8 @@ def _fe_sections(out: Plausibility, doc, raw: dict) -> None:
     for i, s in enumerate(doc.segment, 1):
         sec_raw = _get(raw, "segment", i - 1, "section")
         for key, d_eq, unit in _equivalent_diameters(s.section):
-            d_max = max(d_max, d_eq)
+            if s.section.shape in ("circle", "tube"):      # explicit constants: often a scaled model's
+                d_max = max(d_max, d_eq)
             margin = 1.0 if s.section.shape in ("circle", "tube") else EXPLICIT_MARGIN
             large |= _section_warning(out, f"[[segment]] #{i} section", key, getattr(s.section, key), d_eq, unit,
                                       length, sec_raw, margin)

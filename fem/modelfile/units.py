@@ -27,6 +27,7 @@ import difflib
 import math
 import re
 from dataclasses import dataclass
+from fractions import Fraction
 from functools import lru_cache
 
 MAX_MAGNITUDE = 1e100
@@ -179,7 +180,12 @@ def _tokens(text: str) -> list[tuple[str, str]]:
 
 class _Parser:
     """unit := term ['/' factor];  term := '1' | factor {['*' | '·'] factor};
-    factor := (name | '(' unit ')') [exponent]."""
+    factor := (name | '(' unit ')') [exponent].
+
+    Each rule returns (pint unit, its factor to pint's root units as an exact Fraction): a unit name's
+    factor is the shortest decimal of pint's float (mm: 1/1000, g/cm^3: 1000 exactly, where pint's
+    float arithmetic gives 999.9999999999999), so that "8 g/cm^3" is 8000.0 and "50 mm" is 0.05, the
+    doubles an SI file would hold."""
 
     def __init__(self, tokens, ureg):
         self.t, self.i, self.u = tokens, 0, ureg
@@ -202,24 +208,23 @@ class _Parser:
             if tok in ("/", "*", "·") or kind in ("name",) or tok == "(":
                 raise UnitError("after '/' one factor only: write the denominator in parentheses, "
                                 "e.g. \"kg/(m*s)\"", False)
-            num = num / den
+            num = (num[0] / den[0], num[1] / den[1])
         return num
 
     def term(self):
         kind, tok = self.peek()
         if kind == "one":
             self.take()
-            return self.u.dimensionless
+            return self.u.dimensionless, Fraction(1)
         out = self.factor()
         while True:
             kind, tok = self.peek()
             if tok in ("*", "·"):
                 self.take()
-                out = out * self.factor()
-            elif kind == "name" or tok == "(":
-                out = out * self.factor()
-            else:
+            elif not (kind == "name" or tok == "("):
                 return out
+            f = self.factor()
+            out = (out[0] * f[0], out[1] * f[1])
 
     def factor(self):
         kind, tok = self.take()
@@ -235,14 +240,15 @@ class _Parser:
         kind, tok = self.peek()
         if kind == "exp":
             self.take()
-            out = out ** int(tok)
+            out = (out[0] ** int(tok), out[1] ** int(tok))
         return out
 
     def _name(self, name: str):
         import pint
 
         try:
-            return self.u.Unit(name)
+            unit = self.u.Unit(name)
+            return unit, Fraction(repr(float(self.u.get_root_units(unit)[0])))
         except (pint.errors.UndefinedUnitError, AttributeError, ValueError, TypeError):
             near = [c for c in COMMON if c.lower() == name.lower()] or difflib.get_close_matches(name, COMMON, n=1)
             hint = f"; did you mean {near[0]!r}?" if near else ""
@@ -251,27 +257,28 @@ class _Parser:
 
 @lru_cache(maxsize=4096)
 def parse(text: str):
-    """(magnitude, pint unit) of a quantity string; :class:`UnitError` if it is not one."""
+    """(magnitude, pint unit) of a quantity string, the magnitude an exact Fraction in pint's root
+    units; :class:`UnitError` if it is not one."""
     if len(text) > MAX_LENGTH:
         raise UnitError(f"a quantity string of at most {MAX_LENGTH} characters", False)
     m = _NUMBER.match(text)
     if m is None:
         raise UnitError("a quantity is a number followed by a unit", False)
-    magnitude = float(m.group(1))
-    if not math.isfinite(magnitude):
+    if not math.isfinite(float(m.group(1))):
         raise UnitError("the number is not finite", False)
+    magnitude = Fraction(m.group(1))
     toks = _tokens(text[m.end():])
     if not toks:
         raise UnitError("the unit is missing (a plain number is written without quotes)", False)
     ureg = registry()
     p = _Parser(toks, ureg)
-    unit = p.unit()
+    unit, factor = p.unit()
     if p.i != len(toks):
         raise UnitError(f"cannot read {toks[p.i][1]!r} here", False)
     if "[temperature]" in unit.dimensionality:
         raise UnitError(f"{text.strip()!r} is a temperature, which no key takes: offset units such as degC, "
                         "degF are refused", True)
-    return magnitude, unit
+    return magnitude * factor, unit
 
 
 def _radian_power(unit) -> float:
@@ -279,26 +286,30 @@ def _radian_power(unit) -> float:
 
 
 @lru_cache(maxsize=None)
+def _declared(unit: str):
+    """(pint unit, exact factor to pint's root units) of a declared unit."""
+    if unit == "1":
+        return registry().dimensionless, Fraction(1)
+    return _Parser(_tokens(unit), registry()).unit()
+
+
 def _target(unit: str):
-    return registry().Unit(unit)
+    return _declared(unit)[0]
 
 
-def _value_in(magnitude: float, unit, target: str) -> float | None:
-    """The quantity in ``target`` (a declared unit), or None if its dimension is not that of the key."""
-    ureg = registry()
-    q = ureg.Quantity(magnitude, unit)
+def _value_in(root: Fraction, unit, target: str) -> Fraction | None:
+    """The quantity (``root``: its magnitude in pint's root units) in ``target`` (a declared unit), or
+    None if its dimension is not that of the key."""
     p = _radian_power(unit)
     if target in FREQUENCY_UNITS:
         if unit.dimensionality != _target("1/s").dimensionality:
             return None
-        if p == 1:                                  # radians (or revolutions) per time
-            return float(q.to({"rad/s": "rad/s", "Hz": "turn/s", "rpm": "rpm"}[target]).magnitude)
-        if p == 0:                                  # cycles per time
-            if target == "rad/s":
-                return 2 * math.pi * float(q.to("1/s").magnitude)
-            return float(q.to({"Hz": "1/s", "rpm": "1/min"}[target]).magnitude)
-        return None
-    t = _target(target)
+        per = {"rad/s": "rad/s", "Hz": "turn/s", "rpm": "rpm"} if p == 1 else \
+              {"rad/s": "1/(turn*s)", "Hz": "1/s", "rpm": "1/min"} if p == 0 else None
+        if per is None:
+            return None                             # p == 1: radians per time; p == 0: cycles per time
+        return root / _declared(per[target])[1]
+    t, factor = _declared(target)
     if unit.dimensionality != t.dimensionality:
         return None
     pt = _radian_power(t)
@@ -306,7 +317,7 @@ def _value_in(magnitude: float, unit, target: str) -> float | None:
         return None
     if p != 0 and p != pt:                          # an angle where the key has none
         return None
-    return float(q.to(t).magnitude)
+    return root / factor
 
 
 def _what(unit) -> str:
@@ -326,10 +337,14 @@ def convert(text: str, units: tuple[str, ...]) -> tuple[float, int]:
 
     Raises :class:`UnitError` for a string that is not a quantity, a quantity of another dimension,
     or a value beyond :data:`MAX_MAGNITUDE`."""
-    magnitude, unit = parse(text)
+    root, unit = parse(text)
     for i, target in enumerate(units):
-        value = _value_in(magnitude, unit, target)
-        if value is not None:
+        exact = _value_in(root, unit, target)
+        if exact is not None:
+            try:
+                value = float(exact)
+            except OverflowError:
+                value = math.inf if exact > 0 else -math.inf
             if value != 0 and not (1 / MAX_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE):
                 raise UnitError(f"{value:.3g} {display(target)} is beyond any physical scale (magnitudes "
                                 f"{1 / MAX_MAGNITUDE:g} to {MAX_MAGNITUDE:g})", True)
