@@ -22,24 +22,13 @@ from __future__ import annotations
 from discrete.errors import ModelError
 
 from . import units as U
-from .errors import _unwrap, _where
-from .schema.base import Table, Unit
+from .errors import _where
+from .schema.base import Table, declared_unit
 
 ROTATIONAL_DOFS = ("theta", "w_x", "phi")
 """DOF names of rotations (torsion angle, Hermite slope, Timoshenko section rotation)."""
 PRIMARY_DOF = {"torsion": "theta", "axial": "u", "bending": "w"}
 FE_TABLES = ("segment", "support", "point", "load", "base_motion")
-
-
-def _field_unit(field) -> Unit | None:
-    """The Unit declared on a field (scalar or list items), if any."""
-    ann, meta = _unwrap(field.annotation)
-    found = [m for m in list(field.metadata) + meta if isinstance(m, Unit)]
-    if not found:
-        for arg in getattr(ann, "__args__", ()) or ():
-            _, m2 = _unwrap(arg)
-            found += [m for m in m2 if isinstance(m, Unit)]
-    return found[0] if found else None
 
 
 def _coordinate_fields(cls: type[Table]) -> dict[str, tuple[str, Unit, tuple]]:
@@ -48,7 +37,7 @@ def _coordinate_fields(cls: type[Table]) -> dict[str, tuple[str, Unit, tuple]]:
     if cache is None:
         cache = {}
         for name, f in cls.model_fields.items():
-            unit = _field_unit(f)
+            unit = declared_unit(f.annotation, f.metadata)
             kinds = U.coordinate_kinds(unit.units) if unit is not None and unit.kind == "quantity" else None
             if kinds is not None:
                 cache[name] = (f.alias or name, unit, kinds)
@@ -62,11 +51,11 @@ def check_document(model: Table, raw: dict, kind: str) -> None:
     physics = None
     if kind in ("fe", "hybrid"):
         physics = model.model.physics
-    _walk(model, raw, [], kind, physics, top=True)
+    _walk(model, raw, [], kind, physics)
 
 
-def _walk(table: Table, raw: dict, path: list, kind: str, physics: str | None, top: bool = False) -> None:
-    strings = []                                   # (key, text, kind of coordinate)
+def _walk(table: Table, raw: dict, path: list, kind: str, physics: str | None) -> None:
+    strings = []                                   # (field name, key as written, text, kind of coordinate)
     coordinate = _coordinate_fields(type(table))
     for name, f in type(table).model_fields.items():
         alias = f.alias or name
@@ -81,11 +70,11 @@ def _walk(table: Table, raw: dict, path: list, kind: str, physics: str | None, t
                     if isinstance(r, dict):
                         _walk(v, r, path + [(alias, f"item {i + 1}")], kind, physics)
             elif name in coordinate:
-                strings += [(alias, r, _kind_of(r, coordinate[name])) for r, v in zip(rv, value)
+                strings += [(name, alias, r, _kind_of(r, coordinate[name])) for r, v in zip(rv, value)
                             if isinstance(r, str) and isinstance(v, float)]
         elif isinstance(rv, str) and isinstance(value, float) and name in coordinate:
-            strings.append((alias, rv, _kind_of(rv, coordinate[name])))
-    if strings or getattr(type(table), "unit_choice", None):
+            strings.append((name, alias, rv, _kind_of(rv, coordinate[name])))
+    if strings or type(table).unit_choice:
         where = _where(path + [(None, "key")], kind)
         _check_table(table, raw, strings, where, path, physics)
 
@@ -96,11 +85,11 @@ def _kind_of(text: str, spec) -> str:
 
 
 def _check_table(table: Table, raw: dict, strings: list, where: str, path: list, physics: str | None) -> None:
-    for key, (by, choices) in getattr(type(table), "unit_choice", {}).items():
+    for key, (by, choices) in type(table).unit_choice.items():
         text = raw.get(key)
         if isinstance(text, str) and isinstance(getattr(table, key), float):
             field = type(table).model_fields[key]
-            unit = _field_unit(field)
+            unit = declared_unit(field.annotation, field.metadata)
             alt = U.convert(text, unit.units)[1]
             choice = getattr(table, by)
             if alt not in choices[choice]:
@@ -117,15 +106,14 @@ def _check_table(table: Table, raw: dict, strings: list, where: str, path: list,
             expected = U.R if dof in ROTATIONAL_DOFS else U.T
             why = f"the DOF {dof!r} of this {physics} model is {expected}"
     elif type(table).one_coordinate:
-        first = strings[0]
-        expected, why = first[2], f"{first[0]} = {first[1]!r} of the same table is {first[2]} (one coordinate)"
+        _, key, text, kind = strings[0]
+        expected, why = kind, f"{key} = {text!r} of the same table is {kind} (one coordinate)"
     if expected is None:
         return
-    for key, text, got in strings:
+    for name, key, text, got in strings:
         if got != expected:
-            spec = _coordinate_fields(type(table))[next(n for n, s in _coordinate_fields(type(table)).items()
-                                                        if s[0] == key)]
-            choice = getattr(type(table), "unit_choice", {}).get(key)
-            keep = choice[1][getattr(table, choice[0])] if choice else range(len(spec[2]))
-            units = tuple(u for i, (u, k) in enumerate(zip(spec[1].units, spec[2])) if k == expected and i in keep)
+            _, unit, kinds = _coordinate_fields(type(table))[name]
+            choice = type(table).unit_choice.get(name)
+            keep = choice[1][getattr(table, choice[0])] if choice else range(len(kinds))
+            units = tuple(u for i, (u, k) in enumerate(zip(unit.units, kinds)) if k == expected and i in keep)
             raise ModelError(where, key, text, f"{U.allowed(units)}: {why}, {text.strip()!r} is {got}")

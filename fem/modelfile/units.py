@@ -3,9 +3,11 @@
 Every numeric key declares its unit in the schema (``E: Positive["Pa"]``, see
 :mod:`.schema.base`).  In a model file a value is either a plain number in that unit (SI, except keys
 whose name says otherwise: ``*_rpm``, ``*_deg``, ``*_hz``) or a quantity string such as ``"50 mm"``,
-``"210 GPa"``, ``"3000 rpm"``, converted here once, when the file is read.  The conversion is pint's
+``"210 GPa"``, ``"3000 rpm"``, converted here once, when the file is read.  The units are pint's
 (https://pint.readthedocs.io); pint is imported on the first quantity string only, so a file of plain
-numbers never pays its import (about 0.3 s with its registry).
+numbers never pays its import (about 0.3 s with its registry).  Each unit's factor is the shortest
+decimal of pint's and products are exact fractions, so a decimal unit converts exactly: "50 mm" is
+0.05 and "8 g/cm^3" is 8000.0, the doubles an SI file would hold.
 
 Rules beyond plain dimensional analysis (radians are dimensionless in pint, so these are decided here):
 
