@@ -30,7 +30,8 @@ NON_SI = {
     "N/m": "N/mm", "N*m/rad": "N*m/deg", "N*m/m": "N*m/mm", "N/m^3": "N/mm^3", "N*m/rad^3": "N*m/deg^3",
     "N*m^2": "kN*mm^2", "N*s/m": "N*s/mm", "N*m*s/rad": "N*m*s/deg", "N*s^2/m^2": "N*s^2/mm^2",
     "N*m*s^2/rad^2": "N*m*s^2/deg^2", "N*s^3/m^3": "N*s^3/mm^3", "N*m*s^3/rad^3": "N*m*s^3/deg^3",
-    "1/(N*m)": "1/(kN*m)", "m/rad": "mm/deg", "rad/m": "deg/mm",
+    "1/(N*m)": "1/(kN*m)", "m/rad": "mm/deg", "rad/m": "deg/mm", "Pa*s": "mPa*s", "N/m^1.5": "N/mm^1.5",
+    "N/m^(10/9)": "N/mm^(10/9)",
 }
 """A non-SI unit of the same dimension for every declared unit."""
 def quantity(value: float, unit: str, exact: bool = False) -> str:

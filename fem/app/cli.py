@@ -82,6 +82,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import rotor as rotor_command
 
     rotor_command.add_parser(sub)          # drivefem campbell; modal and forced of [rotor] files
+    from . import convert as convert_command
+
+    convert_command.add_parser(sub)        # drivefem convert: a ROSS rotor file -> a drivefem rotor file
     return p
 
 

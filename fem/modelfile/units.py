@@ -18,14 +18,13 @@ Rules beyond plain dimensional analysis (radians are dimensionless in pint, so t
   with an angle is refused where the key has none (``"3000 rpm"`` is not a rate in 1/s);
   an angle may be left implicit where the key divides by it (``"500 N*m"`` for N m/rad);
 * **no offsets, no temperatures** -- no key is a temperature: degC/degF are refused;
-* **strict syntax** -- a decimal number, then a unit: names with optional integer exponents
-  (``^2``, ``**-1``, ``²``), joined by ``*``, ``·`` or a space, at most one ``/`` followed by one
+* **strict syntax** -- a decimal number, then a unit: names with optional exponents (``^2``, ``**-1``,
+  ``²``, ``^1.5``, ``^(10/9)``), joined by ``*``, ``·`` or a space, at most one ``/`` followed by one
   factor (``"kg/(m*s)"``, not ``"kg/m/s"`` or ``"kg/m s"``, as the SI brochure writes them); pint's
   own parser would also take ``"5,5 mm"`` (as 55 mm) or ``"2**2**40 m"``, which are refused here.
 """
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from dataclasses import dataclass
@@ -84,6 +83,9 @@ _CATALOGUE = (
     Dimension("kg*m", "a mass times an eccentricity (unbalance)", "50 g*mm", T),
     Dimension("kg*m^2*rad", "an inertia times an angle (rotational unbalance)", "50 kg*cm^2*deg", R),
     Dimension("Pa", "a pressure", "210 GPa"),
+    Dimension("Pa*s", "a dynamic viscosity", "20 mPa*s"),
+    Dimension("N/m^1.5", "a Hertz point-contact constant", "1e4 N/mm^1.5"),
+    Dimension("N/m^(10/9)", "a line-contact constant", "1e8 N/mm^(10/9)"),
     Dimension("N", "a force", "2 kN", T),
     Dimension("N*m", "a torque", "1.5 kN*m", R),
     Dimension("N/m", "a stiffness", "20 kN/mm", T),
@@ -160,7 +162,8 @@ def registry():
 
 _NUMBER = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)")
 _SUPERSCRIPT = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
-_TOKEN = re.compile(r"\s*(?:(?P<exp>(?:\^|\*\*)\s*[+-]?\d{1,2}(?![\d.])|[⁺⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]{1,2})"
+_TOKEN = re.compile(r"\s*(?:(?P<exp>(?:\^|\*\*)\s*(?:[+-]?\d{1,2}(?:\.\d{1,3})?(?![\d.])"
+                    r"|\(\s*[+-]?\d{1,2}\s*/\s*\d{1,2}\s*\))|[⁺⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]{1,2})"
                     r"|(?P<name>[A-Za-zµμΩ°%][A-Za-z_µμΩ°]*)|(?P<one>1)(?=\s*/)|(?P<op>[*·/()]))")
 
 
@@ -175,7 +178,9 @@ def _tokens(text: str) -> list[tuple[str, str]]:
             raise UnitError(f"cannot read {bad!r} as part of a unit", False)
         kind = m.lastgroup
         tok = m.group(kind)
-        out.append((kind, tok.translate(_SUPERSCRIPT).lstrip("^*").strip() if kind == "exp" else tok))
+        if kind == "exp":
+            tok = tok.translate(_SUPERSCRIPT).lstrip("^*").strip().strip("()").replace(" ", "")
+        out.append((kind, tok))
         pos = m.end()
     return out
 
@@ -242,7 +247,11 @@ class _Parser:
         kind, tok = self.peek()
         if kind == "exp":
             self.take()
-            out = (out[0] ** int(tok), out[1] ** int(tok))
+            e = Fraction(tok)
+            if e.denominator == 1:
+                out = (out[0] ** int(e), out[1] ** int(e))
+            else:                                   # a fractional power (Hertz contact: m^1.5)
+                out = (out[0] ** float(e), Fraction(float(out[1]) ** float(e)))
         return out
 
     def _name(self, name: str):
@@ -252,6 +261,8 @@ class _Parser:
             unit = self.u.Unit(name)
             return unit, Fraction(repr(float(self.u.get_root_units(unit)[0])))
         except (pint.errors.UndefinedUnitError, AttributeError, ValueError, TypeError):
+            import difflib
+
             near = [c for c in COMMON if c.lower() == name.lower()] or difflib.get_close_matches(name, COMMON, n=1)
             hint = f"; did you mean {near[0]!r}?" if near else ""
             raise UnitError(f"unknown unit {name!r}{hint}", False) from None

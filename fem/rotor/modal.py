@@ -128,8 +128,9 @@ def _any_speed(rs: RotorSystem) -> float:
     """A speed at which every bearing table is defined (for building the solver's template)."""
     if not rs.tables:
         return 0.0
-    lo = max(t.grid[0] for t in rs.tables)
-    hi = min(t.grid[-1] for t in rs.tables)
+    strict = [t for t in rs.tables if t.extrapolate == "refuse"] or rs.tables
+    lo = max(t.grid[0] for t in strict)
+    hi = min(t.grid[-1] for t in strict)
     if lo > hi:
         raise ModelError("[[rotor.bearing]]", "speeds", [(t.grid[0], t.grid[-1]) for t in rs.tables],
                          "bearing tables whose speed ranges overlap")

@@ -57,7 +57,7 @@ def _radius_at(rs: RotorSystem, x: np.ndarray) -> np.ndarray:
     for k, s in enumerate(rs.rotor.segments):
         inside = (x >= ends[k] - 1e-12) & (x <= ends[k + 1] + 1e-12)
         t = (x[inside] - ends[k]) / s.length
-        r[inside] = 0.5 * (s.d + (s.outer_end - s.d) * t)
+        r[inside] = [0.5 * s.outer_diameter(u) for u in t] if s.layers else 0.5 * (s.d + (s.outer_end - s.d) * t)
     return r
 
 

@@ -35,7 +35,8 @@ class Table(BaseModel):
     """A TOML table: strict types, finite numbers, unknown keys are an error."""
 
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True,
-                              use_attribute_docstrings=True)
+                              defer_build=True)
+    # field descriptions (the string under each field): attached on demand, docstrings.attach()
 
     one_coordinate: ClassVar[bool] = False
     """Whether every coordinate-dependent key of the table refers to one coordinate (a body, an
@@ -197,3 +198,10 @@ NonNegative = Number(ge=0)
 Count = Integer(ge=1)
 Fraction = Number(ge=0, le=1)["1"]
 Name = Annotated[str, Field(min_length=1)]
+Pair = Annotated[list[float], Field(min_length=2, max_length=2)]
+"""Two numbers (no unit declared: prefer :func:`pair`)."""
+
+
+def pair(*units: str) -> Any:
+    """Two numbers [a, b] of the declared unit(s)."""
+    return Annotated[list[Real[units]], Field(min_length=2, max_length=2)]

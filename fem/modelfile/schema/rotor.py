@@ -10,11 +10,11 @@ exactly one of the two; a list of speeds may also be a grid ``{ start, stop, poi
 """
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Count, Fraction, Integer, NonNegative, Number, Positive, Real, Table, rule
+from .base import Count, Fraction, Integer, NonNegative, Number, Positive, Real, Table, pair, rule
 
 def coefficient(unit: str):
     """A bearing coefficient in ``unit``: a number or a list over the bearing's speeds."""
@@ -83,6 +83,28 @@ class RotorMaterial(Table):
         return self
 
 
+class RotorLayer(Table):
+    """``[[rotor.segment.layer]]``: a further concentric layer of the segment (a sleeve, an impeller
+    hub, a shrink fit) on the same nodes: its own annulus and material, its own Timoshenko element
+    (own shear parameter Phi; ROSS's convention: shaft elements at one node number are summed).
+    ``mass_only = true``: inertia only (translational, rotary and polar), no stiffness."""
+
+    d: Positive["m"]
+    """Outer diameter at the segment's start, m."""
+    di: NonNegative["m"]
+    """Bore at the start, m (e.g. the segment's d for a sleeve on the shaft; layers must not overlap)."""
+    d_end: Positive["m"] | None = None
+    """Outer diameter at the end, m (default: d)."""
+    di_end: NonNegative["m"] | None = None
+    """Bore at the end, m (default: di)."""
+    material: RotorMaterial | None = None
+    """Override of [rotor.material] for this layer (E and G also set its Phi when mass_only)."""
+    shear_coefficient: Number(gt=0, le=1.5)["1"] | None = None
+    """Timoshenko shear coefficient of the layer (default: Cowper's value for its annulus)."""
+    mass_only: bool = False
+    """True: the layer adds mass, rotary and polar inertia but no stiffness (a shrunk-on impeller, a sleeve)."""
+
+
 class RotorSegment(Table):
     """``[[rotor.segment]]``: a piece of shaft, consecutive along x from x = 0, divided into equal
     Timoshenko elements (shear, rotary inertia, gyroscopic matrices); linear taper when d_end or
@@ -105,7 +127,9 @@ class RotorSegment(Table):
     shear_coefficient: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient kappa (default: Cowper's value for the hollow circle)."""
     added_mass_per_length: NonNegative["kg/m"] = 0.0
-    """Non-structural mass carried by the segment, kg/m (no stiffness)."""
+    """Non-structural mass carried by the segment, kg/m (translational inertia only, no stiffness)."""
+    layer: Annotated[list[RotorLayer], Field(default_factory=list)]
+    """[[rotor.segment.layer]]: further concentric layers (own material; mass_only for inertia without stiffness)."""
 
 
 class RotorDisc(Table):
@@ -148,19 +172,20 @@ class RotorDisc(Table):
 class RotorBearing(Table):
     """``[[rotor.bearing]]``: a linear bearing or seal on (v, w) of a shaft node: force on the shaft
     f = -K d - C d', K = [[kyy, kyz], [kzy, kzz]], C = [[cyy, cyz], [czy, czz]].  Each coefficient is
-    a number or a list over ``speeds``/``speeds_rpm`` (interpolated, never extrapolated); direct
-    coefficients must be >= 0 and not all zero, cross-coupled ones may have any sign."""
+    a number or a list over ``speeds``/``speeds_rpm`` (interpolated; outside the table as
+    ``extrapolate`` says).  Stiffness may have any sign (seals); the damping's symmetric part must be
+    positive semidefinite (cyy, czz >= 0, cyy czz >= ((cyz + czy)/2)^2); some direct coefficient != 0."""
 
     x: Real["m"]
     """Position along the shaft, m (a node)."""
     kyy: BearingStiffness = 0.0
-    """Direct stiffness in y, N/m (>= 0)."""
+    """Direct stiffness in y, N/m (any sign: a seal's may be negative)."""
     kyz: BearingStiffness = 0.0
     """Cross-coupled stiffness, N/m (force in y per displacement in z)."""
     kzy: BearingStiffness = 0.0
     """Cross-coupled stiffness, N/m (force in z per displacement in y)."""
     kzz: BearingStiffness = 0.0
-    """Direct stiffness in z, N/m (>= 0)."""
+    """Direct stiffness in z, N/m (any sign)."""
     cyy: BearingDamping = 0.0
     """Direct damping in y, N s/m (>= 0)."""
     cyz: BearingDamping = 0.0
@@ -173,8 +198,12 @@ class RotorBearing(Table):
     """Speeds of a coefficient table, rad/s, increasing."""
     speeds_rpm: Annotated[list[NonNegative["rpm"]], Field(min_length=2)] | None = None
     """Speeds of a coefficient table, rev/min, increasing (or give speeds)."""
-    interpolation: Literal["linear", "pchip"] = "linear"
-    """Interpolation of a table between its speeds (pchip: shape-preserving cubic)."""
+    interpolation: Literal["linear", "pchip", "spline"] = "linear"
+    """Interpolation of a table between its speeds (pchip: shape-preserving cubic; spline: cubic spline
+    through the points, not-a-knot ends)."""
+    extrapolate: Literal["refuse", "hold", "linear"] = "refuse"
+    """A speed outside the table: refuse (an error), hold (the end values) or linear (the interpolant's
+    tangent line at the table's end); hold and linear warn, naming the bearing and the speeds."""
     k_axial: NonNegative["N/m"] = 0.0
     """Thrust-bearing stiffness on u, N/m (dofs = "full" only)."""
     c_axial: NonNegative["N*s/m"] = 0.0
@@ -193,6 +222,130 @@ class RotorBearing(Table):
             rule(tabulated[0], getattr(self, tabulated[0]), "a number, or give speeds (rad/s) or speeds_rpm "
                  "for a speed-dependent table")
         return self
+
+
+class RotorJournalBearing(Table):
+    """``[[rotor.journal_bearing]]``: a plain (cylindrical) journal bearing computed from its geometry:
+    the isoviscous Reynolds equation of the film over the bearing surface (scikit-fem; cavitation by
+    Reynolds' (Swift-Stieber) condition, or Guembel's), the operating point under the static load at
+    every table speed and the 8 coefficients there (modal, campbell, forced use the table; a run-up,
+    drivefem simulate, applies the nonlinear film force instead)."""
+
+    x: Real["m"]
+    """Position along the shaft, m (a node)."""
+    diameter: Positive["m"]
+    """Journal diameter D, m."""
+    length: Positive["m"]
+    """Bearing length L, m."""
+    clearance: Positive["m"]
+    """Radial clearance c, m (typically 1e-3 D)."""
+    viscosity: Positive["Pa*s"]
+    """Lubricant dynamic viscosity mu, Pa s (isoviscous film)."""
+    load: Positive["N"] | None = None
+    """Static load the bearing carries, N (default: the rotor's weight share on rigid supports at its bearings)."""
+    load_angle_deg: Real["deg"] = -90.0
+    """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z (-90: gravity along -z)."""
+    film: Literal["reynolds", "short"] = "reynolds"
+    """reynolds: finite-length film solved by finite elements; short: Ocvirk's short-bearing closed form (pi film)."""
+    cavitation: Literal["reynolds", "gumbel"] = "reynolds"
+    """Film rupture of the finite film: reynolds (Swift-Stieber: p >= 0 with zero gradient at rupture) or gumbel (half-Sommerfeld)."""
+    grooves_deg: Annotated[list[pair("deg")], Field(max_length=8)] = []
+    """Axial supply grooves at ambient pressure, [[centre, width], ...] in degrees (centre from +y towards +z; finite film only)."""
+    mesh: Annotated[list[Integer(ge=2, le=2000)], Field(min_length=2, max_length=2)] = [144, 16]
+    """Finite film mesh: [elements around (>= 12), elements along the half length]."""
+    speeds: Annotated[list[Positive["rad/s"]], Field(min_length=2)] | None = None
+    """Speeds of the coefficient table, rad/s (> 0, increasing)."""
+    speeds_rpm: Annotated[list[Positive["rpm"]], Field(min_length=2)] | SpeedGridRpm | None = None
+    """Speeds of the coefficient table, rev/min (or give speeds): a list or a grid { start, stop, points }."""
+    interpolation: Literal["linear", "pchip"] = "pchip"
+    """Interpolation of the table between its speeds."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        if isinstance(self.speeds_rpm, SpeedGrid) and self.speeds_rpm.start <= 0:
+            rule("speeds_rpm", self.speeds_rpm.start, "a grid starting above 0 (the film carries no load at rest)")
+        return self
+
+
+class RotorRollingBearing(Table):
+    """``[[rotor.rolling_bearing]]``: a radial ball or roller bearing with radial clearance: Hertzian
+    elements (load-deflection exponent 3/2 balls, 10/9 rollers) on a cage turning at the epicyclic
+    speed; the linear analyses use the stiffness at the static load (averaged over the cage
+    positions), a run-up the nonlinear clearance law element by element."""
+
+    unit_choice: ClassVar[dict] = {"contact_stiffness": ("element", {"ball": (0,), "roller": (1,)})}
+
+    x: Real["m"]
+    """Position along the shaft, m (a node)."""
+    element: Literal["ball", "roller"] = "ball"
+    """Rolling elements: ball (point contact) or roller (line contact)."""
+    elements: Integer(ge=3)
+    """Number of rolling elements Z."""
+    element_diameter: Positive["m"] | None = None
+    """Ball or roller diameter D, m."""
+    pitch_diameter: Positive["m"] | None = None
+    """Pitch diameter d_m, m."""
+    contact_angle_deg: Number(ge=0, lt=90)["deg"] = 0.0
+    """Contact angle alpha, degrees."""
+    clearance: Real["m"] = 0.0
+    """Radial clearance (play per side: half the diametral clearance), m; negative: a preload."""
+    inner_conformity: Number(gt=0.5, lt=1)["1"] = 0.52
+    """Ball bearings: inner groove radius / ball diameter."""
+    outer_conformity: Number(gt=0.5, lt=1)["1"] = 0.52
+    """Ball bearings: outer groove radius / ball diameter."""
+    roller_length: Positive["m"] | None = None
+    """Roller bearings: effective roller length, m."""
+    modulus: Positive["Pa"] = 208e9
+    """Young's modulus of rings and elements, Pa."""
+    poisson: Number(gt=-1, lt=0.5)["1"] = 0.3
+    """Poisson's ratio of rings and elements."""
+    contact_stiffness: Positive["N/m^1.5", "N/m^(10/9)"] | None = None
+    """Load-deflection constant K_n of one element between both races, N/m^n (instead of the geometry)."""
+    damping: NonNegative["N*s/m"] = 0.0
+    """Viscous damping of the bearing in y and z, N s/m."""
+    load: NonNegative["N"] | None = None
+    """Static load the bearing carries, N (default: the rotor's weight share)."""
+    load_angle_deg: Real["deg"] = -90.0
+    """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+
+class RotorSqueezeFilmDamper(Table):
+    """``[[rotor.squeeze_film_damper]]``: a squeeze-film damper (non-rotating journal in an oil film,
+    centred by a spring): short-bearing film in closed form, pi film (cavitated) or 2pi film; the
+    linear analyses use the centring stiffness and the film's damping at the static position, a
+    run-up the nonlinear film force."""
+
+    x: Real["m"]
+    """Position along the shaft, m (a node)."""
+    diameter: Positive["m"]
+    """Damper journal diameter D, m."""
+    length: Positive["m"]
+    """Damper land length L, m."""
+    clearance: Positive["m"]
+    """Radial clearance c, m."""
+    viscosity: Positive["Pa*s"]
+    """Lubricant dynamic viscosity mu, Pa s."""
+    film: Literal["pi", "2pi"] = "pi"
+    """pi: cavitated film (half the circumference pressurised); 2pi: full film."""
+    centering_stiffness: NonNegative["N/m"] = 0.0
+    """Stiffness of the centring spring (squirrel cage) in y and z, N/m."""
+    load: NonNegative["N"] = 0.0
+    """Static load on the damper, N (carried by the centring spring)."""
+    load_angle_deg: Real["deg"] = -90.0
+    """Direction of the static load, degrees from +y towards +z."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the damper sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
 
 
 class RotorPedestal(Table):
@@ -264,6 +417,12 @@ class RotorTable(Table):
     """[[rotor.disc]]: rigid discs."""
     bearing: Annotated[list[RotorBearing], Field(default_factory=list)]
     """[[rotor.bearing]]: linear bearings and seals (8 coefficients, constant or speed tables)."""
+    journal_bearing: Annotated[list[RotorJournalBearing], Field(default_factory=list)]
+    """[[rotor.journal_bearing]]: plain journal bearings computed from their geometry (Reynolds equation)."""
+    rolling_bearing: Annotated[list[RotorRollingBearing], Field(default_factory=list)]
+    """[[rotor.rolling_bearing]]: ball or roller bearings with radial clearance (Hertzian elements)."""
+    squeeze_film_damper: Annotated[list[RotorSqueezeFilmDamper], Field(default_factory=list)]
+    """[[rotor.squeeze_film_damper]]: squeeze-film dampers (short-bearing closed form)."""
     pedestal: Annotated[list[RotorPedestal], Field(default_factory=list)]
     """[[rotor.pedestal]]: bearing supports with their own mass."""
     coupling: Annotated[list[RotorCoupling], Field(default_factory=list)]
@@ -415,9 +574,11 @@ class RunUpTable(Table):
     rtol: Number(ge=1e-13, le=1e-3)["1"] = 1e-8
     """Relative tolerance of the event-located integrator."""
     start: Literal["steady", "rest"] = "steady"
-    """steady: the linear synchronous orbit at speed_start; rest: zero displacement and velocity."""
+    """steady: the linear synchronous orbit at speed_start (about the static state of bearings computed from their geometry); rest: zero displacement and velocity."""
     max_events: Count = 100_000
     """A chattering contact stops the run beyond this many contact events."""
+    integrator: Literal["auto", "DOP853", "LSODA"] = "auto"
+    """Integrator of method = "event": DOP853 (explicit), LSODA (BDF where stiff: fluid films on light journals), auto (LSODA with bearings computed from their geometry, else DOP853)."""
 
     @model_validator(mode="after")
     def _speeds(self):
