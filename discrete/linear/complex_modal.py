@@ -58,7 +58,7 @@ from scipy.sparse.csgraph import connected_components
 
 from ..errors import ModelError, SolverError
 from ..linear_system import LinearSystem
-from ..linalg.banded import BandedLU, _canonical, _csr_rows, band_diagonal as _band_diagonal
+from ..linalg.banded import BandedLU, _canonical, _csr_rows, band_diagonal as _band_diagonal, pattern_key, same_array
 from ..linalg.blas import single_threaded_blas
 from ..linalg.shifted import ShiftedSolver, sturm_count
 from .modal import _norm1 as _matrix_norm1
@@ -149,7 +149,7 @@ def _norm1(A: sp.spmatrix | None) -> float:
 
 def _same_pattern(a: sp.csr_matrix, b: sp.csr_matrix) -> bool:
     return a.shape == b.shape and a.nnz == b.nnz and (
-        (a.indptr is b.indptr and a.indices is b.indices)
+        (same_array(a.indptr, b.indptr) and same_array(a.indices, b.indices))
         or (np.array_equal(a.indptr, b.indptr) and np.array_equal(a.indices, b.indices)))
 
 
@@ -586,8 +586,9 @@ _TRANSPOSE_CACHE: dict = {}
 def _transpose_positions(A: sp.csr_matrix) -> np.ndarray | None:
     """perm with A.T.data == A.data[perm] on A's own (canonical) pattern, or None when the pattern
     is not symmetric; cached per pattern object (blocks split on one map share their arrays)."""
-    hit = _TRANSPOSE_CACHE.get(id(A.indices))
-    if hit is not None and hit[0] is A.indices and hit[1] is A.indptr:
+    key = pattern_key(A)
+    hit = _TRANSPOSE_CACHE.get(key)
+    if hit is not None and same_array(hit[0], A.indices) and same_array(hit[1], A.indptr):
         return hit[2]
     n = A.shape[0]
     rows = _csr_rows(A)
@@ -597,7 +598,7 @@ def _transpose_positions(A: sp.csr_matrix) -> np.ndarray | None:
     perm = pos if np.array_equal(keys[pos], tkeys) else None
     if len(_TRANSPOSE_CACHE) > 64:
         _TRANSPOSE_CACHE.clear()
-    _TRANSPOSE_CACHE[id(A.indices)] = (A.indices, A.indptr, perm)   # holding the arrays keeps the id unique
+    _TRANSPOSE_CACHE[key] = (A.indices, A.indptr, perm)   # holding the arrays keeps their buffers unique
     return perm
 
 
@@ -605,8 +606,8 @@ def _side_by_side(b: _Block, A: sp.csr_matrix, B: sp.csr_matrix) -> sp.csr_matri
     """[A, B] (canonical CSR, same number of rows); where both lie on patterns seen before the
     positions of their entries are reused (cached on the block)."""
     hit = b.hstack_map
-    if not (hit is not None and hit[0] is A.indices and hit[1] is A.indptr and hit[2] is B.indices
-            and hit[3] is B.indptr):
+    if not (hit is not None and same_array(hit[0], A.indices) and same_array(hit[1], A.indptr)
+            and same_array(hit[2], B.indices) and same_array(hit[3], B.indptr)):
         n = A.shape[0]
         rows = np.concatenate([_csr_rows(A), _csr_rows(B)])
         order = np.argsort(rows, kind="stable")          # row by row: A's columns, then B's (shifted)
@@ -688,8 +689,9 @@ def _fixed_start(low: float, high: float, *shape: int) -> np.ndarray:
 def _data_on(lay: BandedLU, A: sp.spmatrix) -> np.ndarray:
     """Values of A at the pattern positions of ``lay`` (A's entries must lie on the pattern)."""
     A = _canonical(A)
-    hit = lay.data_maps.get(id(A.indices))
-    if hit is not None and hit[0] is A.indices and hit[1] is A.indptr:
+    key = pattern_key(A)
+    hit = lay.data_maps.get(key)
+    if hit is not None and same_array(hit[0], A.indices) and same_array(hit[1], A.indptr):
         pos, ok = hit[2], hit[3]
     else:
         n = lay.n
@@ -699,7 +701,7 @@ def _data_on(lay: BandedLU, A: sp.spmatrix) -> np.ndarray:
         ok = (pos < pkeys.size) & (pkeys[np.minimum(pos, pkeys.size - 1)] == akeys)
         if len(lay.data_maps) > 16:
             lay.data_maps.clear()
-        lay.data_maps[id(A.indices)] = (A.indices, A.indptr, pos, ok)    # the arrays held: ids stay unique
+        lay.data_maps[key] = (A.indices, A.indptr, pos, ok)    # the arrays held: their buffers stay unique
     if not np.all(ok | (A.data == 0)):
         raise ValueError("a matrix entry lies outside the solver's sparsity pattern")
     out = np.zeros(lay._rows.size, dtype=A.dtype)

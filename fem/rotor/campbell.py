@@ -21,6 +21,7 @@ import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from discrete.errors import ModelError
+from discrete.linalg.blas import single_threaded_blas
 
 from .modal import RotorEigen, RotorModes, as_system, check_speed, eigen_workspace
 from .whirl import mac
@@ -155,7 +156,10 @@ def campbell(rotor, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool =
     n_cand = min(n_modes + _extra(n_modes), rs.n_dofs - rs.constrained.size)
     eig.solver.sweep(True)                  # warm starts from speed to speed (reproducible per diagram)
     try:
-        result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
+        # one BLAS thread: the tracking's products are tiny (n x 24); a second OpenBLAS thread only
+        # adds its wake-up, which on a loaded 2-core machine cost 70-100 ms per MAC matrix (measured)
+        with single_threaded_blas():
+            result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
     finally:
         eig.solver.sweep(False)
     return result

@@ -118,8 +118,7 @@ class RotorEigen:
 
     def modes(self, speed: float, n_modes: int, tolerance: float = 1e-6) -> RotorModes:
         rs = self.rs
-        K = rs.stiffness(speed) if rs.speed_dependent else None
-        C = rs.damping(speed) if rs.speed_dependent else None
+        K, C = rs.stiffness_and_damping(speed) if rs.speed_dependent else (None, None)
         res = self.solver.solve(n_modes, speed=speed, K=K, C=C, tolerance=tolerance)
         return describe_modes(rs, res)
 
