@@ -227,3 +227,21 @@ def test_convert_writes_ross_convention_by_default(tmp_path, capsys):
     assert text.count('interpolation = "spline"') == 14 and text.count('extrapolate = "linear"') == 14
     assert main(["convert", str(DATA / "compressor_example.toml"), "--out", str(out), "--interpolation", "linear"]) == 0
     assert out.read_text().count('extrapolate = "refuse"') == 14
+
+
+def test_compressor_example_script(tmp_path):
+    """examples/ross_compressor.py: ROSS's tables from rest; no critical speed at rest (four bearing
+    modes are overdamped there), the 1x crossings of the first backward/forward pair near 9650 and
+    9960 rev/min; the figure is written."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("ross_compressor_example", ROOT / "examples" / "ross_compressor.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    modes, camp, shown, path = mod.run(tmp_path)
+    assert path.exists() and path.stat().st_size > 10_000
+    assert np.sum(camp.omega_damped_rad_s[0] == 0) == 6                 # 2 rigid + 4 overdamped bearing modes
+    crit = [c for c in camp.critical_speeds if c.log_decrement < 5]
+    assert all(c.speed_rpm > 1000 for c in camp.critical_speeds)
+    assert [round(c.speed_rpm) for c in crit] == [9648, 9962]
+    assert [c.whirl for c in crit] == ["backward", "forward"]

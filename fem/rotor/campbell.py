@@ -11,7 +11,11 @@ Critical speeds of order k (k = 1: synchronous, 2: twice per revolution, 0.5 ...
 tracked mode the sign changes of g(Omega) = omega_j(Omega) - k Omega on the grid bracket the
 roots, which are then found by Brent's method, each evaluation a modal solve at that speed
 with the mode picked by MAC against the bracket's shape.  The grid only brackets; the root is
-converged to ``xtol`` (relative 1e-10 by default).
+converged to ``xtol`` (relative 1e-10 by default).  Modes that do not oscillate have no critical
+speed: rigid-body modes, and at rest the modes with a real eigenvalue (omega_d = 0: bearing modes
+that are overdamped at low speed), whose omega_d = 0 = k Omega there is the origin of the
+diagram, not a resonance (orders are > 0).  Once such a mode oscillates, its crossings are roots
+like any other (with their damping reported).
 """
 from __future__ import annotations
 
@@ -218,6 +222,11 @@ def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tole
             g = camp.omega_damped_rad_s[:, j] - k * s
             for i in range(s.size - 1):
                 if not (g[i] == 0 or g[i] * g[i + 1] < 0):
+                    continue
+                if g[i] == 0 and camp.omega_damped_rad_s[i, j] == 0.0:
+                    # omega = k Omega = 0 at rest: a mode that does not oscillate there (a real
+                    # eigenvalue: an overdamped bearing mode) meets the line at its origin, which is
+                    # no resonance; a crossing after it, once the mode oscillates, is bracketed next
                     continue
                 ref = shapes[i][:, j]
                 picked = {}
