@@ -169,6 +169,15 @@ class BandFactor:
         x, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, Bp, self.piv)
         return x if lay.identity else x[lay.inv]
 
+    def solve_vector(self, b: np.ndarray) -> np.ndarray:
+        """:meth:`solve` for one real float vector with one real banded factor (an iterative
+        solver's operator: the same LAPACK call without the general path's checks)."""
+        lay = self.layout
+        if self.splu is not None or self.q != 1 or self.complex or b.dtype != np.float64 or b.ndim != 1:
+            return self.solve(b)
+        x, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, b if lay.identity else b[lay.perm], self.piv)
+        return x if lay.identity else x[lay.inv]
+
     def solve(self, b: np.ndarray) -> np.ndarray:
         """Solve with every factorised matrix: ``b`` of shape (q, n) (or (n,) when q = 1)."""
         lay = self.layout

@@ -511,18 +511,20 @@ class QuadraticEigensolver:
                 b.k_factor = (K, fac, 0.0)
         Ds = sp.csr_matrix(D + sigma * M) if sigma else D
         DM = _side_by_side(b, Ds, M)                     # (D + s M) y1 + M y2 in one product
-        out = np.empty(2 * n)
+        product = _csr_matvec(DM)
+        solve = fac.solve_vector if hasattr(fac, "solve_vector") else fac.solve
 
         def op(y):
-            x1 = fac.solve(DM @ y)
+            x1 = solve(product(y))
+            out = np.empty(2 * n)
             out[:n] = -x1
             out[n:] = y[:n] - sigma * x1 if sigma else y[:n]
-            return out.copy()
+            return out
 
         N = 2 * n
         kk = min(2 * k + 2, N - 2)
         ncv = min(N, max(2 * kk + 1, 24))
-        A = spla.LinearOperator((N, N), matvec=op, dtype=float)
+        A = _Operator(N, op)
         start = _fixed_start(0.5, 1.5, N)                  # fixed start: reproducible results
         if self.warm_start and b.start is not None and b.start.size == N:
             start = b.start         # a sweep: the previous solve's wanted subspace (its order fixes the results)
@@ -578,6 +580,38 @@ class QuadraticEigensolver:
             tau *= 3.7
             Q = sp.csr_matrix(K - tau * D + tau * tau * M)
             return lay.factor(_data_on(lay, Q)), -tau
+
+
+class _Operator(spla.LinearOperator):
+    """The Arnoldi operator: ARPACK's vectors go to ``op`` as they are (LinearOperator.matvec's
+    shape checks and reshapes cost as much as the banded solve on a few hundred unknowns)."""
+
+    def __init__(self, n: int, op):
+        super().__init__(np.dtype(float), (n, n))
+        self.matvec = self._matvec = op
+
+
+def _csr_matvec(A: sp.csr_matrix):
+    """y -> A @ y for real float64 vectors, the same kernel as scipy's ``A @ y``
+    (``_sparsetools.csr_matvec`` into a zeroed array) without its dispatch; ``A @ y`` where that
+    private kernel is not there."""
+    try:
+        from scipy.sparse import _sparsetools
+        kernel = _sparsetools.csr_matvec
+    except (ImportError, AttributeError):          # pragma: no cover - another scipy layout
+        return lambda y: A @ y
+    m, n = A.shape
+    indptr, indices, data = A.indptr, A.indices, A.data
+    if data.dtype != np.float64:
+        return lambda y: A @ y
+
+    def product(y):
+        if y.dtype != np.float64 or y.shape != (n,):
+            return A @ y
+        out = np.zeros(m)
+        kernel(m, n, indptr, indices, data, y, out)
+        return out
+    return product
 
 
 _TRANSPOSE_CACHE: dict = {}
