@@ -390,7 +390,7 @@ class QuadraticEigensolver:
         degenerate: those blocks go to Arnoldi)."""
         if D.nnz or M.shape[0] < 2 or M.diagonal().min() <= 0:
             return False
-        if b.sym_key is not None and b.sym_key[0] is K:
+        if b.sym_key is not None and _same(b.sym_key[0], K):      # the same values: a sweep's axial K
             return b.sym_key[1]
         if K.nnz == 0:
             sym = True
@@ -425,7 +425,7 @@ class QuadraticEigensolver:
         """The eigenvalues w^2 <= ``shift`` of the symmetric block (Sylvester's inertia of
         K - shift M); ``unknown`` when the count fails."""
         if _tridiagonal(b):                  # a chain (a rotor's axial or torsional line): Sturm count
-            if b.chain_diagonals is None or b.chain_diagonals[0] is not K or b.chain_diagonals[1] is not M:
+            if b.chain_diagonals is None or not _same(b.chain_diagonals[0], K) or not _same(b.chain_diagonals[1], M):
                 b.chain_diagonals = (K, M, K.diagonal(), M.diagonal(), K.diagonal(1), M.diagonal(1))
             _, _, kd, md, ke, me = b.chain_diagonals
             return sturm_count(kd - shift * md, ke - shift * me)
@@ -796,6 +796,21 @@ def _one_of_each_pair(lam, phi):
     return lam[keep | real], phi[:, keep | real]
 
 
+_NORM_KEPT: list = []
+
+
+def _norm1_kept(A) -> float:
+    """:func:`_norm1` of a matrix that is passed again and again (a block's M): kept for the last
+    few matrix objects (held, so their ids stay unique)."""
+    for B, v in _NORM_KEPT:
+        if B is A:
+            return v
+    v = _norm1(A)
+    _NORM_KEPT.insert(0, (A, v))
+    del _NORM_KEPT[4:]
+    return v
+
+
 def _normalise(phi):
     if phi.size == 0:
         return phi
@@ -812,7 +827,7 @@ def _residuals(M, K, D, lam, phi):
     if D is not None:                     # None: undamped (the terms in this order: results bit-stable)
         R = R + (D @ phi) * lam[None, :]
     R = R + (M @ phi) * (lam**2)[None, :]
-    denom = (np.abs(lam) ** 2 * _norm1(M) + np.abs(lam) * _norm1(D) + _norm1(K)) * np.linalg.norm(phi, axis=0)
+    denom = (np.abs(lam) ** 2 * _norm1_kept(M) + np.abs(lam) * _norm1(D) + _norm1(K)) * np.linalg.norm(phi, axis=0)
     return np.linalg.norm(R, axis=0) / np.where(denom > 0, denom, 1.0)
 
 

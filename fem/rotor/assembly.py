@@ -24,7 +24,7 @@ from discrete.errors import ModelError
 from discrete.linear_system import LinearSystem
 
 from . import elements as el
-from .model import BEARING_COEFFICIENTS, Rotor
+from .model import BEARING_COEFFICIENTS, Rotor, damping_not_dissipative
 from .tables import SpeedTable
 
 
@@ -97,7 +97,16 @@ class RotorSystem:
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         if not self.tables:
             return np.zeros((s.size, 0))
-        return np.hstack([t.at(s) for t in self.tables])
+        c = np.hstack([t.at(s, check=False) for t in self.tables])
+        # the damping check of extrapolated and smoothing-spline values, all tables at once; the
+        # offending table's own check names it
+        checked = [j for j, t in enumerate(self.tables) if t.needs_damping_check(s)]
+        if checked:
+            vals = c.reshape(s.size, len(self.tables), 8)[:, checked, :].reshape(-1, 8).T
+            if damping_not_dissipative(vals) is not None:
+                for j in checked:
+                    self.tables[j].at(s)
+        return c
 
     def stiffness_data(self, speeds, coefficients: np.ndarray | None = None) -> np.ndarray:
         """(n_speeds, nnz) data of K(speed) on the common pattern (``coefficients``: those of

@@ -115,16 +115,17 @@ class SpeedTable:
                 out[:, above] += d_hi[:, None] * (s[above] - hi)[None, :]
         return out.T
 
-    def at(self, speeds) -> np.ndarray:
+    def at(self, speeds, check: bool = True) -> np.ndarray:
         """(n_speeds, 8) coefficients at ``speeds``; outside the table as ``extrapolate`` says (an
         error for ``refuse``, a warning otherwise; extrapolated damping checked, and the smoothing
-        spline's everywhere)."""
+        spline's everywhere -- ``check`` False leaves the damping check to the caller, see
+        :meth:`needs_damping_check`)."""
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         lo, hi = self.grid[0], self.grid[-1]
         outside = s[(s < lo * (1 - 1e-12)) | (s > hi * (1 + 1e-12))]
         if not outside.size:
             vals = self._inside(np.clip(s, lo, hi)).T
-            if self.interpolation == "smoothing-spline":
+            if check and self.interpolation == "smoothing-spline":
                 self._check_damping(vals, s, "at the speed {:g} rad/s (the smoothing spline does not pass through "
                                     "the table's values): use another interpolation")
             return vals
@@ -134,9 +135,17 @@ class SpeedTable:
                              "'refuse': extend its `speeds`, or declare extrapolate = 'hold', 'linear' or 'continue')")
         self._warn(outside, lo, hi)
         vals = self.values_at(s)
-        self._check_damping(vals, s, f"at the extrapolated speed {{:g}} rad/s (extrapolate = {self.extrapolate!r} "
-                            f"outside [{lo:g}, {hi:g}] rad/s): use 'hold' or extend the table")
+        if check:
+            self._check_damping(vals, s, f"at the extrapolated speed {{:g}} rad/s (extrapolate = {self.extrapolate!r} "
+                                f"outside [{lo:g}, {hi:g}] rad/s): use 'hold' or extend the table")
         return vals
+
+    def needs_damping_check(self, speeds: np.ndarray) -> bool:
+        """Whether :meth:`at` checks the damping at these speeds (values that are not the checked
+        table values: extrapolated ones, and the smoothing spline's)."""
+        lo, hi = self.grid[0], self.grid[-1]
+        return self.interpolation == "smoothing-spline" or bool(np.any((speeds < lo * (1 - 1e-12))
+                                                                        | (speeds > hi * (1 + 1e-12))))
 
     def _check_damping(self, vals: np.ndarray, s: np.ndarray, where: str) -> None:
         bad = damping_not_dissipative(vals.T)
@@ -146,6 +155,8 @@ class SpeedTable:
                              f"{DAMPING_RULE} {where.format(s[j])}")
 
     def _warn(self, outside: np.ndarray, lo: float, hi: float) -> None:
+        if outside.min() >= self._warned[0] and outside.max() <= self._warned[1]:
+            return                                   # warned already as far out
         below, above = outside[outside < lo], outside[outside > hi]
         parts = []
         if below.size and below.min() < self._warned[0]:
