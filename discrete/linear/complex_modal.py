@@ -143,8 +143,15 @@ class ComplexModalResult(ComplexModeFigures):
 
 # ====================================================================== solver
 def _norm1(A: sp.spmatrix | None) -> float:
-    """The 1-norm of A (:func:`discrete.linear.modal._norm1`), 0 for a missing matrix."""
-    return 0.0 if A is None else _matrix_norm1(A)
+    """The 1-norm of A (:func:`discrete.linear.modal._norm1`), 0 for a missing matrix.  A block's
+    CSR matrix (a few thousand entries) by a bincount over its column indices: the column sums
+    accumulate in row order as the transposed product's do (the same bits: checked on 100 rotor
+    matrices), without building two sparse matrices per call."""
+    if A is None:
+        return 0.0
+    if sp.isspmatrix_csr(A) and A.nnz and A.data.dtype == np.float64:
+        return float(np.bincount(A.indices, np.abs(A.data), minlength=A.shape[1]).max())
+    return _matrix_norm1(A)
 
 
 def _same_pattern(a: sp.csr_matrix, b: sp.csr_matrix) -> bool:
@@ -194,6 +201,7 @@ class _Block:
     start: np.ndarray | None = None  # Arnoldi start from the previous solve of a sweep (warm starts)
     tridiagonal: bool | None = None  # a chain (consecutive DOFs coupled only): Sturm counts, dpttrf
     hstack_map: tuple | None = None  # positions of [D, M] in the Arnoldi operator's matrix
+    zero: sp.csr_matrix | None = None   # the block's empty D (undamped, non-gyroscopic)
 
 
 class QuadraticEigensolver:
@@ -320,7 +328,9 @@ class QuadraticEigensolver:
             else:
                 Db = Cb
             if Db.nnz and not np.any(Db.data):
-                Db = sp.csr_matrix(Db.shape)
+                if b.zero is None:
+                    b.zero = sp.csr_matrix(Db.shape)     # one empty D per block (an undamped block at every speed)
+                Db = b.zero
             mats.append((Mb, Kb, Db, self._is_symmetric(b, Mb, Kb, Db)))
         # general (damped, gyroscopic) blocks first; then the symmetric ones only for the
         # eigenvalues below the n_modes-th found so far, counted exactly by Sylvester's inertia.
