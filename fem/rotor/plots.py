@@ -45,6 +45,8 @@ def _layout(fig, path) -> Path:
     return path
 
 
+#: the log-decrement panel of a Campbell diagram is cut here (heavily damped modes would flatten it)
+LOG_DEC_SHOWN = 4.0
 #: one colour per tracked mode: tab10 without its grey (the excitation lines are grey) ...
 MODE_COLOURS = tuple(c for i, c in enumerate(plt.get_cmap("tab10").colors) if i != 7) + \
     tuple(c for i, c in enumerate(plt.get_cmap("tab20b").colors) if i % 4 == 1)    # ... then darker shades
@@ -75,14 +77,14 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, op
     fig, axes = plt.subplots(2 if log_decrement else 1, 1, figsize=(9.5, 7.6 if log_decrement else 5.2), sharex=True,
                              gridspec_kw={"height_ratios": [3, 1.4]} if log_decrement else None)
     ax = axes[0] if log_decrement else axes
-    f = camp.omega_damped_rad_s / (2 * np.pi)
+    f = np.where(camp.omega_damped_rad_s > 0, camp.omega_damped_rad_s, np.nan) / (2 * np.pi)   # where it oscillates
     tags = mode_tags(camp)
     colours = [MODE_COLOURS[j % len(MODE_COLOURS)] for j in range(camp.n_modes)]
     for j in range(camp.n_modes):
         w = _dominant([row[j] for row in camp.whirl])
         name = f"mode {tags[j]}: {w} whirl" if camp.kind[j] == "lateral" else f"mode {tags[j]}"
         ax.plot(s, f[:, j], color=colours[j], ls=WHIRL_LINE.get(w, "-"), lw=1.6, label=name)
-    top = float(np.nanmax(f)) * 1.08 if f.size and np.nanmax(f) > 0 else 1.0
+    top = float(np.nanmax(f)) * 1.08 if np.any(np.isfinite(f)) else 1.0
     for k in camp.orders:
         ax.plot(s, k * camp.speeds_rad_s / (2 * np.pi), color="0.3", lw=0.9, ls="-", zorder=1)
         xe = min(s[-1], top * 2 * np.pi / k * RPM)
@@ -116,7 +118,13 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, op
             w = _dominant([row[j] for row in camp.whirl])
             a2.plot(s, ld[:, j], color=colours[j], ls=WHIRL_LINE.get(w, "-"), lw=1.2)
         a2.axhline(0.0, color="k", lw=0.8)
-        a2.set_ylabel("log decrement [-]")
+        hi = float(np.nanmax(ld)) if np.any(np.isfinite(ld)) else 1.0
+        if hi > LOG_DEC_SHOWN:           # modes just past overdamped: log dec -> inf; the stability margin is near 0
+            lo = float(np.nanmin(ld))
+            a2.set_ylim(min(lo, 0.0) - 0.05 * LOG_DEC_SHOWN, LOG_DEC_SHOWN)
+            a2.set_ylabel(f"log decrement [-]\n(shown up to {LOG_DEC_SHOWN:g})")
+        else:
+            a2.set_ylabel("log decrement [-]")
         a2.grid(alpha=0.3)
         a2.set_xlabel("speed [rev/min]")
         a2.set_xlim(s[0], s[-1])
@@ -140,7 +148,7 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, op
         for j in range(camp.n_modes):
             ok = np.flatnonzero(np.isfinite(ld[:, j]))
             if ok.size:
-                ends.append((j, s[ok[-1]], ld[ok[-1], j]))
+                ends.append((j, s[ok[-1]], min(ld[ok[-1], j], a2.get_ylim()[1])))
         ends.sort(key=lambda e: -e[2])
         place_labels(a2, [(x, y) for _, x, y in ends], [tags[j] for j, _, _ in ends], offsets=RIGHT_OF, inside=False,
                      colors=[colours[j] for j, _, _ in ends], fontsize=7.5)
