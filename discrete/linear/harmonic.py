@@ -77,6 +77,8 @@ class HarmonicResult:
     damping: str
     relative: np.ndarray | None = None   # relative response (output minus base motion) for kinematic excitation
     warnings: list[str] = field(default_factory=list)
+    full: np.ndarray | None = None       # (n_freq, n_dofs) complex amplitudes of every DOF (``full=True``)
+    loads: object = None                 # the named outputs (element loads, reactions) a caller attached
 
     @property
     def frequencies_hz(self) -> np.ndarray:
@@ -105,13 +107,14 @@ class HarmonicResult:
 def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None = None,
                       base_motion: dict[int, complex] | None = None, damping: Damping | None = None,
                       outputs: list[int] | None = None, method: str = "direct", n_modes: int | None = None,
-                      modal: ModalResult | None = None, force_omega2: np.ndarray | None = None) -> HarmonicResult:
+                      modal: ModalResult | None = None, force_omega2: np.ndarray | None = None,
+                      full: bool = False) -> HarmonicResult:
     """Steady-state complex amplitudes at DOFs ``outputs`` over the angular frequencies ``omegas``.
 
     ``force``: full-length complex load vector; ``force_omega2``: loads proportional to omega^2 (an
     unbalance m e: the load at omega is omega^2 force_omega2), added to ``force`` frequency by frequency;
     ``base_motion``: {constrained DOF index: complex amplitude}.  ``method``: ``direct`` or ``modal``
-    (``n_modes`` lowest modes).
+    (``n_modes`` lowest modes).  ``full``: keep the amplitudes of every DOF in ``result.full``.
     """
     system = as_linear_system(system, "harmonic_response")
     damping = Damping() if damping is None else damping
@@ -171,7 +174,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     if system.H.nnz and damping.type != "none":
         desc += " + hysteretic (psi of segments/springs)"
     res = HarmonicResult(omega_rad_s=omegas, response=Q[:, outputs], outputs=[system.label(i) for i in outputs],
-                         method=name, damping=desc)
+                         method=name, damping=desc, full=Q if full else None)
     if np.any(Ub):
         ub_full = np.zeros(n, dtype=complex)
         ub_full[system.constrained] = Ub
