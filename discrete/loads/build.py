@@ -52,6 +52,9 @@ class Coordinates:
     extra_H: np.ndarray | None = None
     gears: list = field(default_factory=list)
     held: list = field(default_factory=list)
+    Mdot: np.ndarray | None = None
+    """d M / dt of the named coordinates (a variable inertia M + t Mdot, seed 004; its reactive damping
+    is part of ``C``)."""
 
     @property
     def n(self) -> int:
@@ -175,6 +178,8 @@ def build(coords: Coordinates, links: list, elements: list, sources: list, *, hy
     # the residual r of every named coordinate
     R = _rows(n, n_el, n_src, nn, dtype)
     R["A"] = coords.M @ T
+    if coords.Mdot is not None and np.any(coords.Mdot):
+        R["At"] = coords.Mdot @ T
     R["V"] = coords.C @ T
     R["X"] = (coords.K @ T).astype(dtype)
     if hysteretic and coords.H is not None and np.any(coords.H):

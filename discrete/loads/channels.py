@@ -98,6 +98,8 @@ class LoadMap:
     Fe: np.ndarray
     Fa: np.ndarray
     offset: np.ndarray
+    At: np.ndarray | None = None
+    """Rows of t q'' (a variable inertia M0 + t Mdot, seed 004): None when no channel has one."""
 
     @classmethod
     def empty(cls, n: int, n_el: int, n_src: int) -> "LoadMap":
@@ -111,7 +113,7 @@ class LoadMap:
     def __len__(self) -> int:
         return len(self.channels)
 
-    def add(self, channel: Channel, X=None, V=None, A=None, Fe=None, Fa=None, offset=0.0, **_) -> None:
+    def add(self, channel: Channel, X=None, V=None, A=None, Fe=None, Fa=None, offset=0.0, At=None, **_) -> None:
         """Append a channel with its rows (None: zeros)."""
         if channel.name in self.names:
             raise ModelError("outputs", "name", channel.name, "a name used by one output only")
@@ -120,6 +122,8 @@ class LoadMap:
             r = np.zeros(M.shape[1]) if r is None else np.asarray(r).reshape(M.shape[1])
             return np.vstack([M.astype(np.result_type(M, r)), r[None, :]])
 
+        if At is not None or self.At is not None:
+            self.At = row(np.zeros((len(self), self.X.shape[1])) if self.At is None else self.At, At)
         self.X, self.V, self.A = row(self.X, X), row(self.V, V), row(self.A, A)
         self.Fe, self.Fa = row(self.Fe, Fe), row(self.Fa, Fa)
         self.offset = np.append(self.offset, offset)
@@ -128,27 +132,33 @@ class LoadMap:
     def rows(self, name: str) -> dict:
         """The rows X, V, A, Fe, Fa and offset of the channel ``name``."""
         i = self.names.index(name)
-        return {"X": self.X[i], "V": self.V[i], "A": self.A[i], "Fe": self.Fe[i], "Fa": self.Fa[i],
-                "offset": self.offset[i]}
+        out = {"X": self.X[i], "V": self.V[i], "A": self.A[i], "Fe": self.Fe[i], "Fa": self.Fa[i],
+               "offset": self.offset[i]}
+        if self.At is not None:
+            out["At"] = self.At[i]
+        return out
 
     def take(self, names) -> "LoadMap":
         """The channels ``names`` in that order."""
         idx = [self.names.index(n) for n in names]
         return LoadMap([self.channels[i] for i in idx], self.X[idx], self.V[idx], self.A[idx], self.Fe[idx],
-                       self.Fa[idx], self.offset[idx])
+                       self.Fa[idx], self.offset[idx], None if self.At is None else self.At[idx])
 
     def substituted(self, Lx, Lv, La, Lf) -> "LoadMap":
         """The map with the element forces written as ``f_el = Lx q + Lv q' + La q'' + Lf f_app`` (a
         linear analysis: each nonsmooth element replaced by its declared linearisation)."""
         F = self.Fe
         return LoadMap(self.channels, self.X + F @ Lx, self.V + F @ Lv, self.A + F @ La, np.zeros((len(self), 0)),
-                       self.Fa + F @ Lf, self.offset.copy())
+                       self.Fa + F @ Lf, self.offset.copy(), self.At)
 
-    def values(self, x, v, a, f_el=None, f_app=None) -> np.ndarray:
-        """(n_channels, m) values for states with one column per instant (or frequency)."""
+    def values(self, x, v, a, f_el=None, f_app=None, t=None) -> np.ndarray:
+        """(n_channels, m) values for states with one column per instant (or frequency); ``t``: the
+        instants (needed only with a variable inertia, ``At``)."""
         x = np.asarray(x)
         m = x.shape[1] if x.ndim == 2 else 1
         out = self.X @ x.reshape(-1, m)
+        if self.At is not None and np.any(self.At):
+            out = out + self.At @ (np.asarray(a).reshape(-1, m) * np.asarray(t, dtype=float).reshape(1, m))
         for R, s in ((self.V, v), (self.A, a), (self.Fe, f_el), (self.Fa, f_app)):
             if R.size and s is not None and np.any(R):
                 out = out + R @ np.asarray(s).reshape(R.shape[1], m)

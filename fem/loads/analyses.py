@@ -58,7 +58,7 @@ def time_outputs(lm: LoadMap, t, x, v, a, f_el, f_app, loads=None, events=()) ->
     (``loads``: the drive's :class:`discrete.loads.DriveLoads`; ``events``: the run's events) the
     impacts and friction work of each element."""
     t = np.asarray(t, dtype=float)
-    Y = lm.values(x, v, a, f_el, f_app)
+    Y = lm.values(x, v, a, f_el, f_app, t)
     Y = np.real_if_close(Y)
     out = NamedOutputs("t", t, list(lm.channels), np.asarray(Y, dtype=float))
     out.summaries = {c.name: summary(t, out.values[k], c.is_force) for k, c in enumerate(lm.channels)}

@@ -60,8 +60,12 @@ def lumped_loads(doc, lm, spec, system, *, extra_C=None, extra_H=None, hystereti
     gears = [(link_name("gear", i, t), names.index(t.between[0]), names.index(t.between[1]), t.ratio)
              for i, t in enumerate(doc.gear, 1)]
     held = [(d.name, "driver", names.index(d.name)) for d in lm.drivers]
-    coords = Coordinates(names=names, T=T, solved=[names.index(n) for n in indep], M=np.diag(inertia), C=C, K=K,
-                         H=H, extra_C=extra_C, extra_H=extra_H, gears=gears, held=held)
+    rates = np.array([b.inertia_rate for b in lm.bodies] + [0.0] * len(lm.drivers))
+    react = np.array([b.reactive * b.inertia_rate for b in lm.bodies] + [0.0] * len(lm.drivers))
+    variable = bool(np.any(rates)) and system is spec.system         # the time domain only
+    coords = Coordinates(names=names, T=T, solved=[names.index(n) for n in indep], M=np.diag(inertia),
+                         C=C + (np.diag(react) if variable else 0.0), K=K, H=H, extra_C=extra_C, extra_H=extra_H,
+                         gears=gears, held=held, Mdot=np.diag(rates) if variable else None)
     layout = spec.layout or {}
     elements = [ElementSpec(el, g, table, info=_element_info(table, el))
                 for el, (table, g) in zip(spec.elements, layout.get("elements", []))]

@@ -57,9 +57,10 @@ def forced_table(study, res, all_rows: bool = False, out=sys.stdout) -> None:
               file=out)
 
 
-def outputs_summary(d: dict, out=sys.stdout, limit: int = 12) -> None:
+def outputs_summary(d: dict, out=None, limit: int = 12) -> None:
     """One line per named output of a simulation: peak, mean, rms, peak-to-peak, dynamic load factor;
     per element its impacts and friction work."""
+    out = sys.stdout if out is None else out
     outs = d.get("outputs") or {}
     if not outs:
         return
@@ -81,8 +82,9 @@ def outputs_summary(d: dict, out=sys.stdout, limit: int = 12) -> None:
             print(f"{name}: " + "; ".join(parts), file=out)
 
 
-def forced_loads_lines(loads: dict | None, out=sys.stdout, limit: int = 12) -> None:
+def forced_loads_lines(loads: dict | None, out=None, limit: int = 12) -> None:
     """The largest amplitude of every named output of a forced response and where it occurs."""
+    out = sys.stdout if out is None else out
     if not loads:
         return
     print(f"{'output':<40} {'unit':>15} {'max amplitude':>14} {'at omega [rad/s]':>17}", file=out)
@@ -95,8 +97,9 @@ def forced_loads_lines(loads: dict | None, out=sys.stdout, limit: int = 12) -> N
               file=out)
 
 
-def linearisation_lines(records, out=sys.stdout) -> None:
+def linearisation_lines(records, out=None) -> None:
     """What the linear analysis did with each nonsmooth element (never silently)."""
+    out = sys.stdout if out is None else out
     for r in records or ():
         how = "declared" if r["declared"] else "default"
         print(f"linearised: {r['kind']} {r['element']!r} {r['state']} ({how}): {r['note']}", file=out)
