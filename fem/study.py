@@ -243,7 +243,13 @@ class Study:
             from discrete.steady import afc
 
             with single_threaded_blas():     # small dense kernels: BLAS threads only add contention
-                return afc(self.steady_model(), progress)
+                sm = self.steady_model()
+                res = afc(sm, progress)
+                if res.states:
+                    from .loads.steady import curve_outputs
+
+                    res.loads = curve_outputs(self, sm, res)
+                return res
         if self.kind == "rotor":
             from .rotor import unbalance_response
 

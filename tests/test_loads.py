@@ -407,3 +407,24 @@ def test_modal_and_forced_write_loads_and_the_linearisation(tmp_path):
     d = json.loads((tmp_path / "f.json").read_text())
     assert "spring[1] rotor-load.force" in d["loads"] and "motor.force" in d["loads"]
     assert "spring[1] rotor-load.force amplitude" in (tmp_path / "f.csv").read_text().splitlines()[0]
+
+
+# ------------------------------------------------------------------ rotor files
+def test_rotor_bearing_reactions_balance_the_bearing_stiffness_and_damping():
+    """examples/rotor_friswell_damped.toml's unbalance response: the bearing reactions sum, per direction, to
+    -1^T (K(Omega) + i Omega C(Omega)) Q over the lateral DOFs (the shaft's own stiffness moves no rigid
+    translation), at every speed; the outputs carry the file's names (disc 1, disc 2)."""
+    st = Study.load(EXAMPLES / "rotor_friswell_damped.toml")
+    res = st.forced()
+    rs = st.rotor
+    assert res.bearing_forces and {p.name for p in res.probes} >= {"disc 1", "disc 2"}
+    for field, k in (("v", 0), ("w", 1)):
+        r = np.zeros(rs.n_dofs)
+        r[rs.node_dofs[field]] = 1.0
+        total = sum(f[k] for f in res.bearing_forces.values())
+        for j, s in enumerate(res.speeds_rad_s[::7]):
+            jj = 7 * j
+            sys_ = rs.system_at(s)
+            D = sys_.K + 1j * s * sys_.C
+            want = -(r @ (D @ res.response[jj]))
+            assert total[jj] == pytest.approx(want, rel=1e-9, abs=1e-12 * abs(want) + 1e-300)

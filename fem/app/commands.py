@@ -110,7 +110,9 @@ def forced(args) -> int:
     loads = getattr(res, "loads", None)
     if study.kind in ("lumped", "hybrid"):
         data["linearisation"] = contract.linearisation_data(study) if not data["steady"] else None
-    if loads is not None:
+    if isinstance(loads, dict):                # the nonlinear curve: amplitudes along it
+        data["loads"] = loads
+    elif loads is not None:
         data["loads"] = contract.forced_loads(loads)
         if loads.note:
             data.setdefault("warnings", []).append(loads.note)
@@ -124,8 +126,8 @@ def forced(args) -> int:
               + ", ".join(f"{o} {p:.6g}" for o, p in zip(data["outputs"], per["peak"])))
     steady = data["steady"]
     if args.csv:
-        table = columns.afc(res) if steady else (columns.drive_forced(res) if study.kind == "drive"
-                                                 else columns.harmonic(res, loads))
+        table = columns.afc(res, loads) if steady else (columns.drive_forced(res) if study.kind == "drive"
+                                                        else columns.harmonic(res, loads))
         columns.write(args.csv, table)
         print(f"wrote {args.csv}")
     if args.plot:

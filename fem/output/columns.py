@@ -51,12 +51,15 @@ def drive_forced(res):
     return head, zip(*cols)
 
 
-def afc(res):
-    """Nonlinear amplitude-frequency curve in continuation order."""
+def afc(res, loads=None):
+    """Nonlinear amplitude-frequency curve in continuation order, then the amplitude (half the
+    peak-to-peak over the period) of every named output at each point."""
     z = res.z
+    names = list(loads) if loads else []
     rows = [[res.omega[i], "" if z is None else z[i], res.response[i], int(bool(res.stable[i])),
-             "" if not np.isfinite(res.max_multiplier[i]) else res.max_multiplier[i]] for i in range(res.omega.size)]
-    return ["omega_rad_s", "z", res.response_label, "stable", "max_multiplier"], rows
+             "" if not np.isfinite(res.max_multiplier[i]) else res.max_multiplier[i]]
+            + [loads[n]["amplitude"][i] for n in names] for i in range(res.omega.size)]
+    return ["omega_rad_s", "z", res.response_label, "stable", "max_multiplier"] + [f"{n} amplitude" for n in names], rows
 
 
 def _output_columns(outputs, idx):

@@ -245,11 +245,14 @@ def _rotor_forced(res) -> dict:
     probes = d.pop("probes")
     w = res.speeds_rad_s
     d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi),
-              "outputs": [f"{p['direction']}@x={p['x']:g}" for p in probes],
+              "outputs": [p["label"] for p in probes],
               "amplitude": [p["amplitude"] for p in probes], "phase_lag_deg": [p["phase_lag_deg"] for p in probes],
-              "response": [pr.value for pr in res.probes], "probes": [{"x": p["x"], "direction": p["direction"]}
-                                                                     for p in probes],
+              "response": [pr.value for pr in res.probes],
+              "probes": [{"x": p["x"], "direction": p["direction"], "name": p["name"]} for p in probes],
               "damping": "bearing and seal coefficients (no global damping)", "steady": False})
+    d["bearings"] = {n: {"unit": "N", "force_y": fy, "force_z": fz, "amplitude_y": np.abs(fy), "amplitude_z": np.abs(fz),
+                         "peak": float(np.max(np.maximum(np.abs(fy), np.abs(fz)), initial=0.0))}
+                     for n, (fy, fz) in res.bearing_forces.items()}
     return d
 
 

@@ -92,9 +92,10 @@ def forced_loads_lines(loads: dict | None, out=None, limit: int = 12) -> None:
         if k == limit:
             print(f"... {len(loads) - limit} more outputs in the JSON/CSV", file=out)
             break
-        w = o.get("peak_omega_rad_s")
-        print(f"{name[:40]:<40} {o['unit'][:15]:>15} {o['peak']:14.6g} {'' if w is None else format(w, '17.6g'):>17}",
-              file=out)
+        peak = o.get("max_amplitude", o.get("peak"))
+        w = o.get("at_omega_rad_s", o.get("peak_omega_rad_s"))
+        print(f"{name[:40]:<40} {o['unit'][:15]:>15} {'' if peak is None else format(peak, '14.6g'):>14} "
+              f"{'' if w is None else format(w, '17.6g'):>17}", file=out)
 
 
 def linearisation_lines(records, out=None) -> None:

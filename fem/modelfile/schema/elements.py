@@ -210,8 +210,8 @@ class Gap(Coordinate):
     L: Positive = 1e3
     """Sharpness of the arctan law (11.2)."""
     linearise: Literal["closed", "open"] | None = None
-    """Linear analyses: "closed" (default: a spring of its contact stiffness k, a gear mesh in mesh) or
-    "open" (no force)."""
+    """Linear analyses: "closed" (a spring of its contact stiffness k: the default of a clearance, a gear
+    mesh in mesh) or "open" (no force); a stop (one bound) defaults to its state at s = 0."""
 
     @model_validator(mode="after")
     def _bounds(self):
@@ -230,7 +230,7 @@ class Gap(Coordinate):
     def element(self, where, kind, weight=None):
         if self.stop:
             side, bound = (1, self.upper) if self.upper is not None else (-1, self.lower)
-            return E.OneSided, dict(k=self.k, s_open=bound, side=side, linearise=self.linearise or "closed"), False
+            return E.OneSided, dict(k=self.k, s_open=bound, side=side, linearise=self.linearise), False
         lower, upper = (-self.delta, self.delta) if self.delta is not None else (self.lower, self.upper)
         return E.Gap, dict(k=self.k, lower=lower, upper=upper, law=self.law, L=self.L), False
 
