@@ -23,8 +23,9 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
-  shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per
-  probe, ``peaks`` (AF, separation margins) and ``orbit_major`` (n_speeds x n_nodes); campbell:
+  shaft nodes, ``bearing_load_shapes``; forced is the unbalance response with the speeds as
+  ``omega_rad_s``, one output per probe (named after the disc/bearing there), ``peaks`` (AF,
+  separation margins), ``orbit_major`` (n_speeds x n_nodes) and ``bearings`` (complex reactions); campbell:
   ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``, ``natural_frequency_rad_s``, ``log_decrement``,
   ``damping_ratio``, ``whirl`` (n_modes x n_speeds), ``kind_of_mode``, ``mac_min``, ``residual_max``,
   ``orders``, ``critical_speeds``, ``warnings``.
@@ -236,6 +237,13 @@ def _rotor_modal(study, res) -> dict:
     d["speed_rpm"] = res.speed_rad_s * 30.0 / np.pi
     rs = study.rotor
     d["mode_shapes"] = {"x": res.node_x, "v": res.shapes[rs.node_dofs["v"]].T, "w": res.shapes[rs.node_dofs["w"]].T}
+    from ..rotor.bearing_loads import bearing_forces
+
+    lam = np.asarray(res.eigenvalues)
+    S = np.asarray(res.shapes)
+    forces = bearing_forces(rs, np.full(lam.size, res.speed_rad_s), lambda idx: S[idx].T,
+                            lambda idx: lam[:, None] * S[idx].T)
+    d["bearing_load_shapes"] = {n: {"unit": "N", "force_y": fy, "force_z": fz} for n, (fy, fz) in forces.items()}
     return d
 
 
