@@ -277,7 +277,7 @@ def campbell_columns(camp) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json=False, csv=False, png=True, h5=False)
     from .progress import progress_bar
 
     study = _load(args.model)
@@ -294,6 +294,8 @@ def simulate(args) -> int:
             [f for pair in res.bearing_forces.values() for f in pair]
         write_csv(args.csv, head, np.column_stack(cols).tolist())
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        print(f"wrote {_run_up_h5(study, res, args.h5)}")
     if args.png:
         from pathlib import Path
 
@@ -305,6 +307,35 @@ def simulate(args) -> int:
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
         print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
     return 1 if doc.get("stopped") else 0
+
+
+def _run_up_h5(study, res, path):
+    """The run-up's time history in the --h5 container (docs/outputs.md): the orbits at the probes, the rub
+    forces and the bearing reactions as named outputs, the speed, the rub events."""
+    from types import SimpleNamespace
+
+    from discrete.loads import Channel
+
+    from ..loads.analyses import NamedOutputs
+    from ..output.history import write_history
+
+    chans, cols = [Channel("speed", "velocity", "rad/s", "run_up", "rotor")], [res.speed]
+    for k in range(res.probe_x.size):
+        for c, a in (("y", res.orbit_y), ("z", res.orbit_z)):
+            name = _probe_column(res, k, c)
+            chans.append(Channel(name, "displacement", "m", "probe", name.rsplit(".", 1)[0]))
+            cols.append(a[:, k])
+    for r in res.rubs:
+        chans.append(Channel(f"{r.name}.normal_force", "force", "N", "rub", r.name))
+        cols.append(r.normal_force)
+    for n, (fy, fz) in res.bearing_forces.items():
+        for c, f in (("y", fy), ("z", fz)):
+            chans.append(Channel(f"{n}.force_{c}", "reaction", "N", "bearing", n))
+            cols.append(f)
+    outs = NamedOutputs("t", res.t, chans, np.array(cols))
+    events = [SimpleNamespace(t=e["t"], kind=e["kind"], element=e.get("rub", ""), impulse=0.0) for e in res.events]
+    return write_history(path, command="simulate", title=study.title, kind="rotor", t=res.t, outputs=outs,
+                         events=events)
 
 
 def _probe_column(res, k: int, c: str) -> str:

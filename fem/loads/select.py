@@ -25,10 +25,6 @@ def outputs_map(tables, loads) -> LoadMap:
     return out
 
 
-def _unit(quantity: str, motion):
-    return unit_of(quantity, motion)
-
-
 def _motion_rows(quantity: str, X) -> dict:
     """Rows of a displacement / deflection (X) turned into the asked motion quantity."""
     if quantity in ("displacement", "deflection", "twist"):
@@ -39,9 +35,15 @@ def _motion_rows(quantity: str, X) -> dict:
 
 
 def _channel_like(base: Channel, name: str, quantity: str, where_key: str, where) -> Channel:
-    motion = "rotation" if quantity in ("torque", "moment", "twist") else None
-    unit = unit_of(quantity, motion) if motion else base.unit if quantity in ("force", "reaction") else \
-        unit_of(quantity, None)
+    """An [[output]] of a default channel under the user's name and quantity word: torque, moment and
+    twist say the coordinate is an angle (N m, rad); force, reaction and the motions keep the channel's
+    unit (or the generic one)."""
+    if quantity in ("torque", "moment", "twist"):
+        unit = unit_of(quantity, "rotation")
+    elif quantity in ("force", "reaction", base.quantity):
+        unit = base.unit
+    else:
+        unit = unit_of(quantity, None)
     return Channel(name, quantity, unit, base.source, base.where, acts_on=dict(base.acts_on),
                    info={**base.info, "output": {where_key: where}})
 
