@@ -428,3 +428,27 @@ def test_rotor_bearing_reactions_balance_the_bearing_stiffness_and_damping():
             D = sys_.K + 1j * s * sys_.C
             want = -(r @ (D @ res.response[jj]))
             assert total[jj] == pytest.approx(want, rel=1e-9, abs=1e-12 * abs(want) + 1e-300)
+
+
+def test_hybrid_output_tables_at_fe_nodes():
+    """The drill string with [[output]] at FE nodes: the twist between x = 0 and x = 1 is the bit's angle
+    minus the rotary table's, the reaction at x = 0 is the driver's default reaction output, units from
+    the DOF (rad, rad/s, N m)."""
+    doc = tomllib.loads((EXAMPLES / "hybrid_drill_string.toml").read_text())
+    doc["simulation"]["t_end"] = 8.0
+    doc["output"] = [{"name": "twist", "between": [{"x": 0.0}, {"x": 1.0}], "quantity": "twist"},
+                     {"x": 0.5, "quantity": "velocity"},
+                     {"name": "table torque", "x": 0.0, "quantity": "reaction"},
+                     {"element": "bit", "quantity": "torque"}]
+    st = Study.parse(doc)
+    res = st.simulate()
+    out = st.simulation_outputs(res)
+    assert out.names == ["twist", "x=0.5.velocity", "table torque", "bit.torque"]
+    assert [c.unit for c in out.channels] == ["rad", "rad/s", "N m", "N m"]
+    s = res.solver
+    fe = st.hybrid.fe
+    j0, j1 = fe.system.dof_index(field="theta", x=0.0), fe.system.dof_index(field="theta", x=1.0)
+    full = st.compiled.field(s.x)                                      # (n_t, n_fe) full FE angles
+    assert np.allclose(out.column("twist"), full[:, j1] - full[:, j0], rtol=0, atol=1e-12 * np.max(np.abs(full)))
+    default = time_outputs(st.time_loads.map, s.t, s.x, s.v, s.acceleration, s.element_forces, s.applied)
+    assert np.array_equal(out.column("table torque"), default.column("driver[1] x=0 theta.reaction"))

@@ -116,6 +116,14 @@ class DriveLoads:
     sources: list
     residual: dict
     locate: object = None          # end -> named coordinate vector (an [[output]]'s body or between end)
+    end_motion: object = None      # end -> "rotation" | "translation" | None (the kind of its coordinate)
+
+    def motion_of_ends(self, ends) -> str | None:
+        """The common kind of motion of the ends (None: unknown or mixed)."""
+        if self.end_motion is None:
+            return None
+        kinds = {self.end_motion(e) for e in ends if not (isinstance(e, str) and e == "ground")}
+        return kinds.pop() if len(kinds) == 1 else None
 
     def named_vector(self, end) -> np.ndarray:
         """The named coordinate vector of a body / driver name (lumped) or an end the builder knows."""

@@ -89,8 +89,15 @@ def hybrid_loads(doc, fe, compiled, system=None, *, extra_C=None, extra_H=None, 
         j = fe_dof(fem_model, NodeRef(x=end.x, dof=end.dof), "[[output]]")
         return comp.fe_row(j)
 
+    def end_motion(end):
+        if isinstance(end, str):
+            return None
+        fld = end.dof or fem_model.model.fields[0]
+        return "rotation" if fld in ROTATION else "translation" if fld in TRANSLATION else None
+
     loads = build(coords, links, elements, sources, hysteretic=hysteretic)
     loads.locate = locate
+    loads.end_motion = end_motion
     return loads
 
 

@@ -95,17 +95,19 @@ def _resolve(t, i: int, loads):
         for comp in comps:
             from ..modelfile.schema.lumped import NodeEnd
 
-            g = loads.named_vector(NodeEnd(x=t.x, dof=comp))
-            where = end_name(NodeEnd(x=t.x, dof=comp))
+            end = NodeEnd(x=t.x, dof=comp)
+            g = loads.named_vector(end)
+            where = end_name(end)
             name = (t.name + (f".{comp}" if t.components else "")) if t.name else f"{where}.{q}"
-            motion = loads.coords.motion_of(g)
+            motion = loads.motion_of_ends([end]) or loads.coords.motion_of(g)
             yield Channel(name, q, unit_of(q, motion), "node", where, info={"output": {"x": t.x, "dof": comp}}), \
                 _motion_rows(q, g @ T)
         return
     if not np.any(g):
         raise ModelError(table, where_key, t.body if where_key == "body" else t.between,
                          "a place that moves (not the ground alone)")
-    motion = loads.coords.motion_of(g)
+    ends = [t.body] if where_key == "body" else list(t.between)
+    motion = loads.motion_of_ends(ends) or loads.coords.motion_of(g)
     q_unit = "rotation" if q == "twist" else motion
     name = t.name or f"{where}.{q}"
     yield Channel(name, q, unit_of(q, q_unit), where_key, where, info={"output": {where_key: where}}), \
