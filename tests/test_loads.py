@@ -452,3 +452,29 @@ def test_hybrid_output_tables_at_fe_nodes():
     assert np.allclose(out.column("twist"), full[:, j1] - full[:, j0], rtol=0, atol=1e-12 * np.max(np.abs(full)))
     default = time_outputs(st.time_loads.map, s.t, s.x, s.v, s.acceleration, s.element_forces, s.applied)
     assert np.array_equal(out.column("table torque"), default.column("driver[1] x=0 theta.reaction"))
+
+
+def test_section_loads_join_the_named_outputs_as_columns():
+    """FE section loads (the interface of section_loads: x, quantities, units) become named columns of the
+    same table the element loads fill, and the writers take them."""
+    from dataclasses import dataclass
+
+    from fem.loads.sources import section_columns
+
+    @dataclass
+    class Sections:
+        x: np.ndarray
+        quantities: dict
+        units: dict
+
+    st = Study.load(EXAMPLES / "discrete_seed000_stick_slip.toml")
+    out = st.simulation_outputs(st.simulate())
+    m = out.axis_values.size
+    sec = Sections(np.array([0.0, 0.5]), {"torque": np.ones((2, m)), "bending_moment": np.zeros((2, m))},
+                   {"torque": "N m", "bending_moment": "N m"})
+    n0 = len(out.channels)
+    out.extend(*section_columns(sec, "shaft", m))
+    assert out.names[n0:] == ["shaft.torque@x=0", "shaft.torque@x=0.5", "shaft.bending_moment@x=0",
+                              "shaft.bending_moment@x=0.5"]
+    assert out.values.shape == (n0 + 4, m) and out.channels[n0].unit == "N m" and out.channels[n0].is_force
+    assert out.describe()["shaft.torque@x=0"]["dynamic_load_factor"] == pytest.approx(1.0)

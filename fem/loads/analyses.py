@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from discrete.loads import Channel, LoadMap, amplitude_summary, summary
+from discrete.loads import LoadMap, amplitude_summary, summary
 
 
 @dataclass
@@ -41,10 +41,13 @@ class NamedOutputs:
         return self.values[self.names.index(name)]
 
     def extend(self, channels: list, values: np.ndarray, summaries: dict | None = None) -> None:
-        """Add columns of another source over the same axis (e.g. FE section loads)."""
+        """Add columns of another source over the same axis (e.g. FE section loads:
+        :func:`fem.loads.sources.section_columns`); a time axis gets their derived quantities."""
         values = np.asarray(values).reshape(len(channels), self.axis_values.size)
         self.channels = list(self.channels) + list(channels)
         self.values = np.vstack([self.values, values]) if self.values.size else values
+        if summaries is None and self.axis == "t":
+            summaries = {c.name: summary(self.axis_values, np.real(values[k]), c.is_force) for k, c in enumerate(channels)}
         self.summaries.update(summaries or {})
 
     def describe(self) -> dict:

@@ -8,7 +8,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from discrete.linear_system import LinearSystem
-from discrete.loads import SourceSpec, linearise
+from discrete.loads import linearise
 
 from .analyses import forced_outputs, modal_outputs, time_outputs
 from .select import outputs_map
