@@ -46,7 +46,7 @@ def _hb_orbits(sm, res, points: int):
         t, q, v = hb.evaluate(np.asarray(X), float(w), points=max(points, hb.N))
         E = np.array([p.basis(tk) for tk in t]).T
         x, xd = p.full_state(q, v, E)
-        F, _ = sm.system.element_series(t, q, v, float(w))
+        F = sm.system.element_series(t, q, v, float(w))[0] if sm.system.elements else np.zeros((0, t.size))
         a, f = p.recover(t, x, xd, F)
         yield t, x, xd, a, F, f
 
