@@ -155,12 +155,46 @@ class Study:
     def _lumped_system(self):
         return self.lumped.linear_system()
 
-    def problem_spec(self, t_end: float | None = None):
+    def problem_spec(self, t_end: float | None = None, refuse: bool = True):
         """The nonsmooth problem without its forcing frequency fixed (lumped and hybrid)."""
         if self.kind == "lumped":
-            return build_lumped.problem_spec(self.doc, t_end)
+            return build_lumped.problem_spec(self.doc, t_end, refuse)
         self._need("hybrid", what="a nonsmooth problem")
         return self.compiled.spec()
+
+    # ------------------------------------------------------------ loads and named outputs (fem.loads)
+    linearisation = None
+    """What the last linear analysis did with each nonsmooth element (records; None: no element)."""
+
+    @cached_property
+    def time_loads(self):
+        """The load map of the time simulation (:class:`discrete.loads.DriveLoads`)."""
+        from .loads.drive import drive_loads
+
+        self._need("lumped", "hybrid", what="element loads")
+        return drive_loads(self)
+
+    @cached_property
+    def linear_model(self):
+        """The linear analyses' model: every nonsmooth element in its declared linear state
+        (:class:`fem.loads.drive.LinearModel`; lumped and hybrid files)."""
+        from .loads.drive import LinearModel, drive_loads
+
+        self._need("lumped", "hybrid", what="the linearised elements")
+        base = self.linear_system()
+        return LinearModel(self, base, drive_loads(self, linear=True, system=base))
+
+    def simulation_outputs(self, res):
+        """The named outputs of a simulation (:class:`fem.loads.analyses.NamedOutputs`)."""
+        from .loads.drive import simulation_outputs
+
+        return simulation_outputs(self, res)
+
+    def modal_outputs(self, res):
+        """The load shape of every mode of :meth:`modal` (lumped and hybrid files)."""
+        from .loads.drive import modal_outputs_of
+
+        return modal_outputs_of(self, self.linear_model, res)
 
     # ------------------------------------------------------------ analyses
     def modal_count(self, n_modes: int | None = None) -> int:
@@ -172,7 +206,8 @@ class Study:
             return n_modes
         if self.kind == "drive":
             return min(DEFAULT_MODES, 2 * self.drive.n)
-        return max(1, min(DEFAULT_MODES, self.linear_system().n_free))
+        system = self.linear_model.system if self.kind in ("lumped", "hybrid") else self.linear_system()
+        return max(1, min(DEFAULT_MODES, system.n_free))
 
     def modal(self, n_modes: int | None = None, shift: float | None = None):
         """Natural frequencies and mode shapes (drive files: by their representation)."""
@@ -193,7 +228,11 @@ class Study:
         tol = an.tolerance if isinstance(an, ModalAnalysis) else 1e-5
         if shift is None and isinstance(an, ModalAnalysis):
             shift = an.shift
-        result = modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+        system = self.linear_system()
+        if self.kind in ("lumped", "hybrid"):
+            system = self.linear_model.system
+            self.linearisation = self.linear_model.records or None
+        result = modal_analysis(system, self.modal_count(n_modes), shift=shift, tolerance=tol)
         motors = [t.name or f"motor{i}" for i, t in enumerate(getattr(self.doc, "motor", None) or (), 1)]
         if motors:
             result.warnings.append(f"the motor(s) {', '.join(motors)} are not part of these undamped modes of the "
@@ -221,6 +260,10 @@ class Study:
                     from discrete.steady.nnm import afc_backbone
 
                     res.extra["backbone"] = afc_backbone(sm, res).to_dict()
+                if res.states:
+                    from .loads.steady import curve_outputs
+
+                    res.loads = curve_outputs(self, sm, res)
                 return res
         if self.kind == "rotor":
             from .rotor import unbalance_response
@@ -241,6 +284,9 @@ class Study:
         from discrete.linear import harmonic_response
 
         system = self.linear_system()
+        if self.kind == "lumped":
+            system = self.linear_model.system
+            self.linearisation = self.linear_model.records or None
         if self.kind == "lumped" and getattr(self.doc, "motor", None):
             system = self._with_motors(system)
         spec = build_linear.forced_spec(self.doc, system)
@@ -251,9 +297,37 @@ class Study:
                                    force=spec.force if np.any(spec.force) else None, base_motion=spec.base_motion,
                                    damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
                                    method=spec.method, n_modes=spec.n_modes)
-        return harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
-                                 base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
-                                 outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
+        res = harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
+                                base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
+                                outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
+        if self.kind == "lumped":
+            res.loads = self._forced_loads(system, res)
+        return res
+
+    def _forced_loads(self, system, res):
+        """The named outputs of a lumped forced response (complex amplitudes, element loads included)."""
+        from .loads.drive import LinearModel, drive_loads, forced_outputs_of, linear_sources
+
+        base = self.linear_system()
+        damping = build_linear.damping(self.doc.damping)
+        n = base.n_dofs
+        Ks = system.K.toarray()[:n, :n]
+        extra_C = extra_H = None
+        if damping.type == "rayleigh":
+            extra_C = damping.alpha * base.M.toarray() + damping.beta * Ks
+        elif damping.type == "hysteretic":
+            extra_H = 2 * damping.delta * Ks
+        sources = linear_sources(self, base)
+        loads = drive_loads(self, linear=True, system=base, extra_C=extra_C, extra_H=extra_H, hysteretic=True,
+                            sources=sources, undamped=damping.type == "none")
+        model = LinearModel(self, base, loads)
+        if damping.type == "none":
+            model.lin.Lv = 0.0 * model.lin.Lv
+        out = forced_outputs_of(self, model, res, sources)
+        if damping.type == "modal":
+            out.note = ("modal damping has no matrix form: the reactions and gear forces leave out its forces "
+                        "(the element deflections and forces are exact)")
+        return out
 
     def _with_motors(self, system):
         """The lumped linear system with every [[motor]]'s complex stiffness to ground along its coordinate

@@ -78,6 +78,7 @@ class HarmonicResult:
     relative: np.ndarray | None = None   # relative response (output minus base motion) for kinematic excitation
     warnings: list[str] = field(default_factory=list)
     full: np.ndarray | None = field(default=None, repr=False)   # (n_freq, n_dofs): every DOF (section loads)
+    loads: object = None                 # the named outputs (element loads, reactions) a caller attached
 
     @property
     def frequencies_hz(self) -> np.ndarray:
@@ -112,7 +113,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     ``force``: full-length complex load vector; ``force_omega2``: loads proportional to omega^2 (an
     unbalance m e: the load at omega is omega^2 force_omega2), added to ``force`` frequency by frequency;
     ``base_motion``: {constrained DOF index: complex amplitude}.  ``method``: ``direct`` or ``modal``
-    (``n_modes`` lowest modes).
+    (``n_modes`` lowest modes).  ``result.full`` keeps the amplitudes of every DOF.
     """
     system = as_linear_system(system, "harmonic_response")
     damping = Damping() if damping is None else damping

@@ -89,6 +89,14 @@ def _linear_note(study) -> None:
               "analysis sees the rotor free of contact", file=sys.stderr)
 
 
+def _rub_records(study) -> list | None:
+    """The linearisation record of the [[rub]] clearances (open: the linear analyses see no contact)."""
+    rubs = getattr(study.doc, "rub", None) or []
+    return [{"element": r.name or f"rub {i} at x = {r.x:g} m", "kind": "rub", "state": "open", "declared": False,
+             "note": "open: no contact (the clearance acts only in drivefem simulate)"}
+            for i, r in enumerate(rubs, 1)] or None
+
+
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _check_outputs(args, json=False, plot=False, png=True)
@@ -98,7 +106,7 @@ def modal(args) -> int:
     study = _load(args.model)
     _linear_note(study)
     res = study.modal(args.modes)
-    _emit(args, "modal", study, contract.modal_data(study, res))
+    _emit(args, "modal", study, contract.modal_data(study, res) | {"linearisation": _rub_records(study)})
     modal_table(study, res)
     if args.plot:
         from ..rotor.plots import plot_mode_orbits
@@ -157,7 +165,7 @@ def forced(args) -> int:
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
-    _emit(args, "forced", study, contract.forced_data(study, res))
+    _emit(args, "forced", study, contract.forced_data(study, res) | {"linearisation": _rub_records(study)})
     forced_table(study, res, all_rows=args.all)
     if args.csv:
         write_csv(args.csv, *response_columns(res))
@@ -172,7 +180,7 @@ def forced(args) -> int:
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
     out = sys.stdout if out is None else out
     print(f"{study.title}\nunbalance response: {res.method}", file=out)
-    hdr = "".join(f" | {p.direction + '@' + format(p.x, 'g'):>22}" for p in res.probes)
+    hdr = "".join(f" | {p.label[:22]:>22}" for p in res.probes)
     print(f"{'rev/min':>10} {'rad/s':>10}{hdr}\n{'':>21}" + "".join(f" | {'amp [m]':>11}{'lag':>11}" for _ in res.probes),
           file=out)
     s = res.speeds_rad_s
@@ -190,7 +198,7 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
         sm = "" if pk.separation_margin is None else f", separation margin {pk.separation_margin:.1f} %"
         req = "" if pk.required_margin is None else f" (required {pk.required_margin:.1f} %: " + \
             ("ok" if pk.passes else "FAILS") + ")"
-        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.direction}@x={p.x:g}: "
+        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.label}: "
               f"{pk.amplitude:.4e} m, AF {af}{sm}{req}" + (f"; {pk.note}" if pk.note else ""), file=out)
     for w in res.warnings:
         print(f"warning: {w}", file=out)
@@ -198,13 +206,15 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
 
 def response_columns(res) -> tuple[list[str], list]:
     """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe."""
-    head = ["speed_rpm", "speed_rad_s"] + [f"{p.direction}@x={p.x:g} {q}" for p in res.probes
+    head = ["speed_rpm", "speed_rad_s"] + [f"{p.label} {q}" for p in res.probes
                                            for q in ("amplitude", "lag_deg", "re", "im")]
+    head += [f"{n}.force_{c} amplitude" for n in res.bearing_forces for c in ("y", "z")]
     rows = []
     for j, s in enumerate(res.speeds_rad_s):
         row = [s * RPM, s]
         for p in res.probes:
             row += [p.amplitude[j], p.phase_lag_deg[j], p.value[j].real, p.value[j].imag]
+        row += [abs(f[j]) for pair in res.bearing_forces.values() for f in pair]
         rows.append(row)
     return head, rows
 
@@ -218,7 +228,7 @@ def campbell(args) -> int:
                          "model)")
     _linear_note(study)
     camp = study.campbell(args.modes)
-    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    _emit(args, "campbell", study, contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)})
     campbell_table(study, camp)
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp))
@@ -267,7 +277,7 @@ def campbell_columns(camp) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json=False, csv=False, png=True, h5=False)
     from .progress import progress_bar
 
     study = _load(args.model)
@@ -282,12 +292,16 @@ def simulate(args) -> int:
     if whirl is not None:
         whirl_table(whirl[1])
     if args.csv:
-        head = ["t", "speed_rad_s"] + [f"{c}@x={x:g}" for x in res.probe_x for c in ("y", "z")] + \
-            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")]
+        head = ["t", "speed_rad_s"] + [_probe_column(res, k, c) for k in range(res.probe_x.size) for c in ("y", "z")] + \
+            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")] + \
+            [f"{n}.force_{c}" for n in res.bearing_forces for c in ("y", "z")]
         cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
-            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))]
+            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))] + \
+            [f for pair in res.bearing_forces.values() for f in pair]
         write_csv(args.csv, head, np.column_stack(cols).tolist())
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        print(f"wrote {_run_up_h5(study, res, args.h5)}")
     if args.png:
         from pathlib import Path
 
@@ -329,6 +343,41 @@ def whirl_table(onset, out=None) -> None:
           f"{onset.growth:.3g} x", file=out)
 
 
+def _run_up_h5(study, res, path):
+    """The run-up's time history in the --h5 container (docs/outputs.md): the orbits at the probes, the rub
+    forces and the bearing reactions as named outputs, the speed, the rub events."""
+    from types import SimpleNamespace
+
+    from discrete.loads import Channel
+
+    from ..loads.analyses import NamedOutputs
+    from ..output.history import write_history
+
+    chans, cols = [Channel("speed", "velocity", "rad/s", "run_up", "rotor")], [res.speed]
+    for k in range(res.probe_x.size):
+        for c, a in (("y", res.orbit_y), ("z", res.orbit_z)):
+            name = _probe_column(res, k, c)
+            chans.append(Channel(name, "displacement", "m", "probe", name.rsplit(".", 1)[0]))
+            cols.append(a[:, k])
+    for r in res.rubs:
+        chans.append(Channel(f"{r.name}.normal_force", "force", "N", "rub", r.name))
+        cols.append(r.normal_force)
+    for n, (fy, fz) in res.bearing_forces.items():
+        for c, f in (("y", fy), ("z", fz)):
+            chans.append(Channel(f"{n}.force_{c}", "reaction", "N", "bearing", n))
+            cols.append(f)
+    outs = NamedOutputs("t", res.t, chans, np.array(cols))
+    events = [SimpleNamespace(t=e["t"], kind=e["kind"], element=e.get("rub", ""), impulse=0.0) for e in res.events]
+    return write_history(path, command="simulate", title=study.title, kind="rotor", t=res.t, outputs=outs,
+                         events=events)
+
+
+def _probe_column(res, k: int, c: str) -> str:
+    """The CSV column of probe k's orbit component c: <name>.<c> where a named thing is there, else c@x=<x>."""
+    n = res.probe_names[k] if k < len(res.probe_names) else ""
+    return f"{n}.{c}" if n else f"{c}@x={res.probe_x[k]:g}"
+
+
 def _lowest(values) -> str:
     known = [v for v in values if v is not None]
     return f"{min(known):.12f}" if known else ("n/a (free rotor)" if values else "n/a (no rub)")
@@ -349,7 +398,13 @@ def run_up_table(study, res, out=None) -> None:
     for k, x in enumerate(res.probe_x):
         r = np.hypot(res.orbit_y[:, k], res.orbit_z[:, k])
         j = int(np.argmax(r))
-        print(f"  probe x = {x:g} m: peak orbit radius {r[j]:.4e} m at {res.speed[j] * RPM:.1f} rev/min", file=out)
+        name = res.probe_names[k] if k < len(res.probe_names) and res.probe_names[k] else ""
+        print(f"  probe {name + ' ' if name else ''}x = {x:g} m: peak orbit radius {r[j]:.4e} m at "
+              f"{res.speed[j] * RPM:.1f} rev/min", file=out)
+    for name, (fy, fz) in res.bearing_forces.items():
+        mag = np.hypot(fy, fz)
+        j = int(np.argmax(mag)) if mag.size else 0
+        print(f"  bearing {name!r}: peak force {mag.max(initial=0.0):.4g} N at {res.speed[j] * RPM:.1f} rev/min", file=out)
     for r in res.rubs:
         fc = r.first_contact
         first = "never" if fc is None else f"first at t = {fc['t']:.5g} s ({fc['speed_rad_s'] * RPM:.1f} rev/min)"

@@ -1,4 +1,6 @@
-"""Internal loads of FE shafts, rods, beams and rotors (docs/loads.md).
+"""Internal loads and named outputs (docs/loads.md, docs/outputs.md).
+
+FE shafts, rods, beams and rotors (docs/loads.md):
 
 * :func:`section_loads` -- torque, axial force, bending moment and shear force along an assembled
   :class:`fem.FEModel` (or a rotor's :class:`~fem.rotor.RotorSystem`: :func:`rotor_section_loads`, bending
@@ -11,6 +13,11 @@ The layers: :mod:`.elements` (what an element is to the recovery), :mod:`.shaft_
 :mod:`.rotor_elements` (building them), :mod:`.motion` (the state), :mod:`.recovery` (end forces and
 values inside elements), :mod:`.section` and :mod:`.reactions` (the public functions), :mod:`.study`
 (what each analysis of a model file reports).
+
+Lumped and hybrid files (docs/outputs.md): the drive's load map (:mod:`discrete.loads`) built from the
+file's tables with the file's names (:mod:`.lumped`, :mod:`.hybrid`, :mod:`.drive`), the ``[[output]]``
+selection (:mod:`.select`), and the outputs of each analysis (:mod:`.analyses`: time histories, load
+shapes of modes, complex amplitudes of a forced response).
 """
 from .reactions import rotor_reactions, support_reactions
 from .section import UNITS, SectionLoads, elements_of, rotor_section_loads, section_loads

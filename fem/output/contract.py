@@ -12,15 +12,20 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   ``phase_lag_deg`` (n_out x n_freq), ``response`` (complex, n_out x n_freq; null for the nonlinear
   curve, whose amplitude is its response measure), ``method``, ``damping``, ``warnings``; the
   nonlinear curve (``steady``) adds ``stable``, ``max_multiplier``, ``folds``, ``reason``, ...
-* simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...
+* simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...;
+  lumped and hybrid files add ``outputs`` ({name: quantity, unit, source, where, peak, max, min, mean,
+  rms, peak_to_peak, dynamic_load_factor}), ``element_summary`` (impacts, impulse_sum, friction work per
+  element) and ``history`` (the --h5 file, record_every); modal and forced add ``linearisation`` (what
+  each nonsmooth element became) and ``load_shapes`` / ``loads`` (docs/outputs.md).
 * parametric: the stability chart -- ``depth`` (n_depth), ``omega_rad_s`` and ``omega_ratio`` (Omega /
   omega_1, n_omega), ``rho_max``, ``stable``, ``growth_rate_1_s``, ``error_estimate``,
   ``liouville_residual`` (n_depth x n_omega), ``natural_omega_rad_s``, ``centres``, ``thresholds``,
   ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
-  shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per
-  probe, ``peaks`` (AF, separation margins) and ``orbit_major`` (n_speeds x n_nodes); campbell:
+  shaft nodes, ``bearing_load_shapes``; forced is the unbalance response with the speeds as
+  ``omega_rad_s``, one output per probe (named after the disc/bearing there), ``peaks`` (AF,
+  separation margins), ``orbit_major`` (n_speeds x n_nodes) and ``bearings`` (complex reactions); campbell:
   ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``, ``natural_frequency_rad_s``, ``log_decrement``,
   ``damping_ratio``, ``whirl`` (n_modes x n_speeds), ``kind_of_mode``, ``mac_min``, ``residual_max``,
   ``orders``, ``critical_speeds``, ``warnings``.
@@ -143,10 +148,79 @@ def forced_data(study, res) -> dict:
 
 
 # ------------------------------------------------------------------ simulate
-def simulate_data(study, res) -> dict:
-    d = res.to_dict()
+def simulate_data(study, res, outputs=None, history=None) -> dict:
+    """The simulation's summary; ``outputs``: its named outputs (``outputs``: each one's description and
+    derived quantities, ``element_summary``: impacts and friction work per element); ``history``: where
+    the time history went (--h5) and how it was decimated."""
+    solver = getattr(res, "solver", res)
+    d = res.to_dict(events=False)
+    d["events"] = events_json(solver.events)
     d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
+    if outputs is not None:
+        d["outputs"] = outputs.describe()
+        d["element_summary"] = outputs.elements
+    d["history"] = history
     return with_loads(study, res, d)
+
+
+def events_json(events):
+    """The ``events`` list ({t, kind, element, state: {dof: {x, v}}} each, design.md §5) as JSON text
+    built in one pass from the run's arrays of event states (:class:`discrete.nonsmooth.result.EventState`:
+    a long run's thousands of events are written without building a dictionary per event); other events
+    through the one encoder.  Numbers are written as Python's repr (the shortest round-trip form, as
+    ``json`` writes them); a non-finite one is refused like everywhere else."""
+    import json
+
+    from discrete.errors import SolverError
+    from discrete.nonsmooth.result import EventState
+
+    from .jsonio import Raw
+
+    if not events:
+        return []
+    first = events[0].state
+    if not (type(first) is EventState and all(type(e.state) is EventState and e.state._x is first._x
+                                               for e in events)):
+        return [e.to_dict() for e in events]
+    names = first._names
+    cols = [e.state._k for e in events]
+    X, V = first._x[:, cols], first._v[:, cols]
+    t = np.array([e.t for e in events], dtype=float)
+    for what, arr in (("t", t), ("x", X), ("v", V)):
+        if not np.all(np.isfinite(arr)):
+            k = int(np.argwhere(~np.isfinite(arr.reshape(-1, t.size)))[0][-1])
+            raise SolverError(f"the result is not finite at $.events[{k}] ({what}): the computation lost its meaning "
+                              "there (check the model's parameters, or the solver's warnings above)")
+    keys = [json.dumps(str(n)) for n in names]
+    kinds = {k: json.dumps(k) for k in {e.kind for e in events}}
+    elems = {k: json.dumps(k) for k in {e.element for e in events}}
+    Xl, Vl, tl = X.T.tolist(), V.T.tolist(), t.tolist()
+    lines = []
+    for k, e in enumerate(events):
+        xs, vs = Xl[k], Vl[k]
+        state = ", ".join(f'{key}: {{"x": {x!r}, "v": {v!r}}}' for key, x, v in zip(keys, xs, vs))
+        lines.append(f'{{"t": {tl[k]!r}, "kind": {kinds[e.kind]}, "element": {elems[e.element]}, "state": {{{state}}}}}')
+    return Raw("[\n    " + ",\n    ".join(lines) + "\n  ]", len(lines))
+
+
+def linearisation_data(study) -> list | None:
+    """What the linear analysis did with each nonsmooth element (None: the file has none)."""
+    return study.linearisation
+
+
+def load_shapes(outputs) -> dict:
+    """Modal: {output name: its description and its value in each mode}."""
+    return {c.name: {**c.describe(), "modes": outputs.values[k]} for k, c in enumerate(outputs.channels)}
+
+
+def forced_loads(outputs) -> dict:
+    """Forced: {output name: description, complex amplitude, amplitude and lag per frequency, the peak}."""
+    out = {}
+    for k, c in enumerate(outputs.channels):
+        z = np.asarray(outputs.values[k], dtype=complex)
+        out[c.name] = {**c.describe(), **outputs.summaries.get(c.name, {}), "response": z, "amplitude": np.abs(z),
+                       "phase_lag_deg": np.mod(-np.degrees(np.angle(z)), 360.0)}
+    return out
 
 
 def run_up_data(study, res) -> dict:
@@ -182,6 +256,13 @@ def _rotor_modal(study, res) -> dict:
     d["speed_rpm"] = res.speed_rad_s * 30.0 / np.pi
     rs = study.rotor
     d["mode_shapes"] = {"x": res.node_x, "v": res.shapes[rs.node_dofs["v"]].T, "w": res.shapes[rs.node_dofs["w"]].T}
+    from ..rotor.bearing_loads import bearing_forces
+
+    lam = np.asarray(res.eigenvalues)
+    S = np.asarray(res.shapes)
+    forces = bearing_forces(rs, np.full(lam.size, res.speed_rad_s), lambda idx: S[idx].T,
+                            lambda idx: lam[:, None] * S[idx].T)
+    d["bearing_load_shapes"] = {n: {"unit": "N", "force_y": fy, "force_z": fz} for n, (fy, fz) in forces.items()}
     return d
 
 
@@ -191,11 +272,14 @@ def _rotor_forced(res) -> dict:
     probes = d.pop("probes")
     w = res.speeds_rad_s
     d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi),
-              "outputs": [f"{p['direction']}@x={p['x']:g}" for p in probes],
+              "outputs": [p["label"] for p in probes],
               "amplitude": [p["amplitude"] for p in probes], "phase_lag_deg": [p["phase_lag_deg"] for p in probes],
-              "response": [pr.value for pr in res.probes], "probes": [{"x": p["x"], "direction": p["direction"]}
-                                                                     for p in probes],
+              "response": [pr.value for pr in res.probes],
+              "probes": [{"x": p["x"], "direction": p["direction"], "name": p["name"]} for p in probes],
               "damping": "bearing and seal coefficients (no global damping)", "steady": False})
+    d["bearings"] = {n: {"unit": "N", "force_y": fy, "force_z": fz, "amplitude_y": np.abs(fy), "amplitude_z": np.abs(fz),
+                         "peak": float(np.max(np.maximum(np.abs(fy), np.abs(fz)), initial=0.0))}
+                     for n, (fy, fz) in res.bearing_forces.items()}
     return d
 
 

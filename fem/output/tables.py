@@ -57,6 +57,55 @@ def forced_table(study, res, all_rows: bool = False, out=sys.stdout) -> None:
               file=out)
 
 
+def outputs_summary(d: dict, out=None, limit: int = 12) -> None:
+    """One line per named output of a simulation: peak, mean, rms, peak-to-peak, dynamic load factor;
+    per element its impacts and friction work."""
+    out = sys.stdout if out is None else out
+    outs = d.get("outputs") or {}
+    if not outs:
+        return
+    print(f"{'output':<34} {'unit':>15} {'peak':>12} {'mean':>12} {'rms':>12} {'peak-peak':>12} {'DLF':>8}", file=out)
+    for k, (name, o) in enumerate(outs.items()):
+        if k == limit:
+            print(f"... {len(outs) - limit} more outputs in the JSON/CSV", file=out)
+            break
+        dlf = o.get("dynamic_load_factor")
+        print(f"{name[:34]:<34} {o['unit'][:15]:>15} {o['peak']:12.5g} {o['mean']:12.5g} {o['rms']:12.5g} "
+              f"{o['peak_to_peak']:12.5g} {'' if dlf is None else format(dlf, '8.4g'):>8}", file=out)
+    for name, e in (d.get("element_summary") or {}).items():
+        parts = []
+        if "impacts" in e:
+            parts.append(f"{e['impacts']} impacts, impulse sum {e['impulse_sum']:.6g}")
+        if "friction_work" in e:
+            parts.append(f"friction work {e['friction_work']:.6g} (dissipated {e['friction_dissipated']:.6g})")
+        if parts:
+            print(f"{name}: " + "; ".join(parts), file=out)
+
+
+def forced_loads_lines(loads: dict | None, out=None, limit: int = 12) -> None:
+    """The largest amplitude of every named output of a forced response and where it occurs."""
+    out = sys.stdout if out is None else out
+    if not loads:
+        return
+    print(f"{'output':<40} {'unit':>15} {'max amplitude':>14} {'at omega [rad/s]':>17}", file=out)
+    for k, (name, o) in enumerate(loads.items()):
+        if k == limit:
+            print(f"... {len(loads) - limit} more outputs in the JSON/CSV", file=out)
+            break
+        peak = o.get("max_amplitude", o.get("peak"))
+        w = o.get("at_omega_rad_s", o.get("peak_omega_rad_s"))
+        print(f"{name[:40]:<40} {o['unit'][:15]:>15} {'' if peak is None else format(peak, '14.6g'):>14} "
+              f"{'' if w is None else format(w, '17.6g'):>17}", file=out)
+
+
+def linearisation_lines(records, out=None) -> None:
+    """What the linear analysis did with each nonsmooth element (never silently)."""
+    out = sys.stdout if out is None else out
+    for r in records or ():
+        how = "declared" if r["declared"] else "default"
+        print(f"linearised: {r['kind']} {r['element']!r} {r['state']} ({how}): {r['note']}", file=out)
+
+
 def simulation_summary(title: str, d: dict, out=sys.stdout) -> None:
     counts = ", ".join(f"{n} {k}" for k, n in sorted(d.get("event_counts", {}).items()))
     print(f"{title}\nsimulated to t = {d.get('t_end')} ({d.get('method', '')}); {len(d.get('events', []))} events"

@@ -88,7 +88,7 @@ def plot_bode(resp, path, *, probes=None, title: str = "", log: bool = True) -> 
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True)
     for j in idx:
         p = resp.probes[j]
-        label = f"x = {p.x:g} m ({p.direction})"
+        label = f"{p.name} (x = {p.x:g} m, {p.direction})" if p.name else f"x = {p.x:g} m ({p.direction})"
         (a1.semilogy if log else a1.plot)(s, np.maximum(p.amplitude, 1e-300) * 1e6, label=label)
         a2.plot(s, p.phase_lag_deg, label=label)
     annotated = set()
@@ -133,7 +133,8 @@ def plot_polar(resp, path, probe: int = 0, *, title: str = "") -> Path:
     ax.set_aspect("equal", "datalim")
     ax.set_xlabel("real [um]")
     ax.set_ylabel("imaginary [um]")
-    ax.set_title(title or f"polar plot, x = {p.x:g} m ({p.direction}); labels: rev/min", fontsize=9)
+    ax.set_title(title or f"polar plot, {p.name + ', ' if p.name else ''}x = {p.x:g} m ({p.direction}); labels: rev/min",
+                 fontsize=9)
     return _save(fig, path)
 
 
@@ -231,7 +232,9 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     s = res.speed * RPM
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, gridspec_kw={"height_ratios": [2, 1.2]})
     for k, x in enumerate(res.probe_x):
-        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8, label=f"x = {x:g} m")
+        name = res.probe_names[k] if k < len(getattr(res, "probe_names", [])) else ""
+        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8,
+                label=f"{name} (x = {x:g} m)" if name else f"x = {x:g} m")
     for r in res.rubs:
         ax.axhline(1e3 * r.clearance, color="k", ls="--", lw=0.8)
         ax2.plot(s, r.normal_force, lw=0.8, label=r.name)
@@ -335,6 +338,7 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
     axes[0].set_ylabel("z [mm]")
-    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)"
+    name = res.probe_names[probe] if probe < len(getattr(res, "probe_names", [])) else ""
+    fig.suptitle(title or f"orbits at {name + ', ' if name else ''}x = {x:g} m (last 3 revolutions)"
                  + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)

@@ -25,6 +25,7 @@ from .drive import Drive
 from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
+from .output import Output
 from .rotor import (CampbellTable, RotorAnalysis, RotorTable, RubTable, RunUpTable, UnbalanceResponseTable,
                     UnbalanceTable)
 from .simulation import Constants, Initial, Reduction, Simulation
@@ -81,6 +82,8 @@ class LumpedTables(Table):
     """[[spring]]: linear springs (with optional parallel dashpots)."""
     damper: _array(Damper)
     """[[damper]]: viscous dampers."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: every element's deflection and force, every reaction)."""
 
 
 class TimeTables(Table):
