@@ -184,17 +184,19 @@ class Study:
         base = self.linear_system()
         return LinearModel(self, base, drive_loads(self, linear=True, system=base))
 
-    def simulation_outputs(self, res):
-        """The named outputs of a simulation (:class:`fem.loads.analyses.NamedOutputs`)."""
-        from .loads.drive import simulation_outputs
+    def outputs(self, result):
+        """The named outputs of ``result`` (any analysis of this study): element loads, reactions, section
+        loads of FE shafts and rotors, [[output]] selections (:func:`fem.loads.study.outputs`; docs/outputs.md):
+        a :class:`fem.loads.analyses.NamedOutputs` over modes, frequencies or time, a dict along a [steady]
+        curve, or None where the analysis has none (drive files, Campbell diagrams, periodic responses)."""
+        from .loads.study import outputs
 
-        return simulation_outputs(self, res)
+        return outputs(self, result)
 
-    def modal_outputs(self, res):
-        """The load shape of every mode of :meth:`modal` (lumped and hybrid files)."""
-        from .loads.drive import modal_outputs_of
-
-        return modal_outputs_of(self, self.linear_model, res)
+    def steady_model_of(self, result):
+        """The steady model behind a [steady] curve computed by :meth:`forced` (built again if not kept)."""
+        sm = getattr(self, "_steady", None)
+        return sm[1] if sm is not None and sm[0] is result else self.steady_model()
 
     # ------------------------------------------------------------ analyses
     def modal_count(self, n_modes: int | None = None) -> int:
@@ -260,10 +262,7 @@ class Study:
                     from discrete.steady.nnm import afc_backbone
 
                     res.extra["backbone"] = afc_backbone(sm, res).to_dict()
-                if res.states:
-                    from .loads.steady import curve_outputs
-
-                    res.loads = curve_outputs(self, sm, res)
+                self._steady = (res, sm)
                 return res
         if self.kind == "rotor":
             from .rotor import unbalance_response
@@ -300,34 +299,7 @@ class Study:
         res = harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
                                 base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
                                 outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
-        if self.kind == "lumped":
-            res.loads = self._forced_loads(system, res)
         return res
-
-    def _forced_loads(self, system, res):
-        """The named outputs of a lumped forced response (complex amplitudes, element loads included)."""
-        from .loads.drive import LinearModel, drive_loads, forced_outputs_of, linear_sources
-
-        base = self.linear_system()
-        damping = build_linear.damping(self.doc.damping)
-        n = base.n_dofs
-        Ks = system.K.toarray()[:n, :n]
-        extra_C = extra_H = None
-        if damping.type == "rayleigh":
-            extra_C = damping.alpha * base.M.toarray() + damping.beta * Ks
-        elif damping.type == "hysteretic":
-            extra_H = 2 * damping.delta * Ks
-        sources = linear_sources(self, base)
-        loads = drive_loads(self, linear=True, system=base, extra_C=extra_C, extra_H=extra_H, hysteretic=True,
-                            sources=sources, undamped=damping.type == "none")
-        model = LinearModel(self, base, loads)
-        if damping.type == "none":
-            model.lin.Lv = 0.0 * model.lin.Lv
-        out = forced_outputs_of(self, model, res, sources)
-        if damping.type == "modal":
-            out.note = ("modal damping has no matrix form: the reactions and gear forces leave out its forces "
-                        "(the element deflections and forces are exact)")
-        return out
 
     def _with_motors(self, system):
         """The lumped linear system with every [[motor]]'s complex stiffness to ground along its coordinate
@@ -414,15 +386,6 @@ class Study:
             budget.check_count("[run_up]", "duration", estimate, budget.MAX_TIME_STEPS, note, spec.run.duration)
 
         return run_up(self.rotor, spec.run, spec.unbalances, spec.rubs, progress=progress, check_steps=check_steps)
-
-    def loads(self, result):
-        """Internal loads of ``result`` (an analysis of this study): section loads along the FE shaft or the
-        rotor and the reactions of supports, springs, drivers and bearings (:class:`fem.loads.study.StudyLoads`:
-        load shapes of modes, complex amplitudes of forced responses, time histories of hybrid runs); None
-        for lumped and drive files and nonlinear steady states (docs/loads.md)."""
-        from .loads.study import study_loads
-
-        return study_loads(self, result)
 
     def steady_model(self):
         """The steady-state model of [steady] (lumped and hybrid files)."""

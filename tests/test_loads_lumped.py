@@ -119,7 +119,7 @@ def test_friction_force_in_stick_is_the_solvers_multiplier(name, element):
     st = Study.load(EXAMPLES / name)
     res = st.simulate()
     solver = res.solver if st.kind == "hybrid" else res
-    out = st.simulation_outputs(res)
+    out = st.outputs(res)
     p = st.compiled.problem if st.kind == "hybrid" else st.problem_spec().problem()
     i = [el.name for el in p.elements].index(element)
     ks = _stick_samples(solver, element)
@@ -139,7 +139,7 @@ def test_contact_forces_are_their_laws_of_the_recorded_deflection():
     """The backlash of the cam example: -k (s - bound) beyond the clearance, zero inside; seed 002's strand
     (discrete_strand_spool.toml): -k (s - s_open) while taut (s > s_open = -F0/k), zero when slack."""
     st = Study.load(EXAMPLES / "cam_clearance.toml")
-    out = st.simulation_outputs(st.simulate())
+    out = st.outputs(st.simulate())
     s, F = out.column("backlash.deflection"), out.column("backlash.force")
     k, d = 2.0e5, 0.0005
     law = np.where(s > d, -k * (s - d), np.where(s < -d, -k * (s + d), 0.0))
@@ -147,7 +147,7 @@ def test_contact_forces_are_their_laws_of_the_recorded_deflection():
     assert np.max(np.abs(F - law)) <= 1e-9 * np.max(np.abs(F))
     st = Study.load(EXAMPLES / "discrete_strand_spool.toml")
     res = st.simulate()
-    out = st.simulation_outputs(res)
+    out = st.outputs(res)
     s, F = out.column("strand.deflection"), out.column("strand.force")
     k = 43440.333333333336
     s_open = -30.0 / k
@@ -173,7 +173,7 @@ def test_impact_impulses_are_the_momentum_jumps(name, element):
         dv = solver.v[p.f, ks[-1]] - solver.v[p.f, ks[0]]
         P = float(g @ (p.M0 @ dv)) / float(g @ g)
         assert e.impulse == pytest.approx(P, rel=1e-9)
-    summ = st.simulation_outputs(res).elements[element]
+    summ = st.outputs(res).elements[element]
     assert summ["impacts"] == len(impacts)
     assert summ["impulse_sum"] == pytest.approx(sum(e.impulse for e in impacts), rel=1e-12)
 
@@ -189,7 +189,7 @@ def test_driver_reaction_is_inertia_times_acceleration_minus_applied_forces():
            "simulation": {"t_end": 3.0, "output_step": 0.01}}
     st = Study.parse(doc)
     res = st.simulate()
-    out = st.simulation_outputs(res)
+    out = st.outputs(res)
     xd, xb = res.x[res.names.index("crank")], res.x[res.names.index("slider")]
     ad = -A * w * w * np.sin(w * res.t)
     R = J * ad - k * (xb - xd)
@@ -201,7 +201,7 @@ def test_friction_work_matches_the_energy_balance():
     balance's category) to the sampling's accuracy."""
     st = Study.load(EXAMPLES / "discrete_seed000_stick_slip.toml")
     res = st.simulate()
-    out = st.simulation_outputs(res)
+    out = st.outputs(res)
     assert out.elements["bit"]["friction_work"] == pytest.approx(res.work_parts["friction"], rel=1e-3)
 
 
@@ -279,7 +279,7 @@ def test_stuck_friction_holds_its_body_and_reports_the_constraint_force():
     st = Study.parse(doc)
     r = st.modal()
     assert r.omega_rad_s.size == 1 and r.omega_rad_s[0] == pytest.approx(30.0, rel=1e-12)
-    out = st.modal_outputs(r)
+    out = st.outputs(r)
     phi = r.shapes[:, 0]
     names = st.lumped.linear_system().dof_name.tolist()
     x_rim = phi[names.index("rim")]
@@ -300,7 +300,7 @@ def test_forced_loads_balance_at_every_frequency():
     from its complex stiffness included)."""
     st = Study.load(EXAMPLES / "motor_drive_forced.toml")
     r = st.forced()
-    out = r.loads
+    out = st.outputs(r)
     names = st.lumped.names
     _, T = st.lumped.transformation()
     Q = T @ r.full[:, :T.shape[1]].T
@@ -332,12 +332,12 @@ def test_simulate_writes_loads_in_json_csv_and_h5(tmp_path):
     p = _cli("simulate", EXAMPLES / "discrete_seed000_stick_slip.toml", "--json", j, "--csv", c, "--h5", h)
     assert p.returncode == 0, p.stderr
     d = json.loads(j.read_text())
-    assert list(d["outputs"]) == ["spring[1] top-disk.deflection", "spring[1] top-disk.force", "bit.force",
+    assert list(d["named_outputs"]) == ["spring[1] top-disk.deflection", "spring[1] top-disk.force", "bit.force",
                                   "bit.slip_velocity", "top.reaction"]
-    assert d["outputs"]["top.reaction"]["dynamic_load_factor"] > 1
+    assert d["named_outputs"]["top.reaction"]["dynamic_load_factor"] > 1
     assert d["history"]["file"] == str(h) and d["element_summary"]["bit"]["friction_dissipated"] > 0
     head = c.read_text().splitlines()[0].split(",")
-    assert head[-5:] == list(d["outputs"])
+    assert head[-5:] == list(d["named_outputs"])
     rows = np.array([[float(x) for x in line.split(",")] for line in c.read_text().splitlines()[1:]])
     with h5py.File(h, "r") as f:
         assert f.attrs["schema"] == "drivefem.history"
@@ -356,12 +356,12 @@ def test_output_tables_select_and_name_the_outputs(tmp_path):
     assert p.returncode == 0, p.stderr
     d = json.loads(j.read_text())
     want = ["mesh force", "mesh deflection", "coupling torque", "output shaft twist", "motor torque", "drum speed"]
-    assert list(d["outputs"]) == want
+    assert list(d["named_outputs"]) == want
     assert c.read_text().splitlines()[0].split(",") == ["t"] + want
-    mesh = d["outputs"]["mesh force"]
+    mesh = d["named_outputs"]["mesh force"]
     assert mesh["mean"] == pytest.approx(50 / 0.15, rel=0.01)
     assert mesh["dynamic_load_factor"] == pytest.approx(mesh["peak"] / mesh["mean"], rel=1e-12)
-    assert d["outputs"]["coupling torque"]["unit"] == "N m" and d["outputs"]["output shaft twist"]["unit"] == "rad"
+    assert d["named_outputs"]["coupling torque"]["unit"] == "N m" and d["named_outputs"]["output shaft twist"]["unit"] == "rad"
 
 
 def test_unknown_output_element_is_one_clear_line(tmp_path):
@@ -390,7 +390,7 @@ def test_record_every_decimates_the_written_history_but_keeps_the_events(tmp_pat
     assert t.size < full.t.size / 5
     assert set(e.t for e in full.events) <= set(t.tolist())
     d = json.loads((tmp_path / "m.json").read_text())
-    assert d["outputs"]["bit.force"]["peak"] == pytest.approx(18.0, rel=1e-12)     # summaries use every sample
+    assert d["named_outputs"]["bit.force"]["peak"] == pytest.approx(18.0, rel=1e-12)     # summaries use every sample
 
 
 def test_modal_and_forced_write_loads_and_the_linearisation(tmp_path):
@@ -403,12 +403,14 @@ def test_modal_and_forced_write_loads_and_the_linearisation(tmp_path):
     assert "linearised: gap 'mesh' closed (default): closed: a spring of its contact stiffness k = 2e+08" in p.stdout
     d = json.loads((tmp_path / "m.json").read_text())
     assert d["linearisation"][0]["element"] == "mesh"
-    assert set(d["load_shapes"]) >= {"mesh.force", "motor.reaction", "spring[1] motor-pinion.force"}
+    assert set(d["named_outputs"]) >= {"mesh.force", "motor.reaction", "spring[1] motor-pinion.force"}
+    assert len(d["named_outputs"]["mesh.force"]["modes"]) == d["n_modes"]
     assert (tmp_path / "m.csv").read_text().splitlines()[0].startswith("mode,f_hz,omega_rad_s,spring[1] motor-pinion")
     p = _cli("forced", EXAMPLES / "motor_drive_forced.toml", "--json", tmp_path / "f.json", "--csv", tmp_path / "f.csv")
     assert p.returncode == 0, p.stderr
     d = json.loads((tmp_path / "f.json").read_text())
-    assert "spring[1] rotor-load.force" in d["loads"] and "motor.force" in d["loads"]
+    assert "spring[1] rotor-load.force" in d["named_outputs"] and "motor.force" in d["named_outputs"]
+    assert len(d["named_outputs"]["motor.force"]["response"]) == len(d["omega_rad_s"])
     assert "spring[1] rotor-load.force amplitude" in (tmp_path / "f.csv").read_text().splitlines()[0]
 
 
@@ -420,11 +422,14 @@ def test_rotor_bearing_reactions_balance_the_bearing_stiffness_and_damping():
     st = Study.load(EXAMPLES / "rotor_friswell_damped.toml")
     res = st.forced()
     rs = st.rotor
-    assert res.bearing_forces and {p.name for p in res.probes} >= {"disc 1", "disc 2"}
-    for field, k in (("v", 0), ("w", 1)):
+    out = st.outputs(res)
+    assert {p.name for p in res.probes} >= {"disc 1", "disc 2"}
+    for field, comp in (("v", "y"), ("w", "z")):
         r = np.zeros(rs.n_dofs)
         r[rs.node_dofs[field]] = 1.0
-        total = sum(f[k] for f in res.bearing_forces.values())
+        cols = [k for k, c in enumerate(out.channels) if c.source == "bearing" and c.name.endswith(f".force_{comp}")]
+        assert len(cols) == len(rs.rotor.bearings)
+        total = out.values[cols].sum(axis=0)
         for j, s in enumerate(res.speeds_rad_s[::7]):
             jj = 7 * j
             sys_ = rs.system_at(s)
@@ -445,7 +450,7 @@ def test_hybrid_output_tables_at_fe_nodes():
                      {"element": "bit", "quantity": "torque"}]
     st = Study.parse(doc)
     res = st.simulate()
-    out = st.simulation_outputs(res)
+    out = st.outputs(res)
     assert out.names == ["twist", "x=0.5.velocity", "table torque", "bit.torque"]
     assert [c.unit for c in out.channels] == ["rad", "rad/s", "N m", "N m"]
     s = res.solver
@@ -457,30 +462,26 @@ def test_hybrid_output_tables_at_fe_nodes():
     assert np.array_equal(out.column("table torque"), default.column("driver[1] x=0 theta.reaction"))
 
 
-def test_section_loads_join_the_named_outputs_as_columns():
-    """FE section loads (the interface of section_loads: x, quantities, units) become named columns of the
-    same table the element loads fill, and the writers take them."""
-    from dataclasses import dataclass
+def test_hybrid_section_outputs_are_the_section_loads_of_the_run():
+    """[[output]] at x on the drill string's FE shaft (torque at mid-length): the column is
+    fem.loads.section_loads of the run's state (the drive's accelerations, the FE part expanded) at that
+    station, and it joins the element loads in one table."""
+    from fem.loads import section_loads
+    from fem.loads.drive import time_signals
 
-    from fem.loads.sources import section_columns
-
-    @dataclass
-    class Sections:
-        x: np.ndarray
-        quantities: dict
-        units: dict
-
-    st = Study.load(EXAMPLES / "discrete_seed000_stick_slip.toml")
-    out = st.simulation_outputs(st.simulate())
-    m = out.axis_values.size
-    sec = Sections(np.array([0.0, 0.5]), {"torque": np.ones((2, m)), "bending_moment": np.zeros((2, m))},
-                   {"torque": "N m", "bending_moment": "N m"})
-    n0 = len(out.channels)
-    out.extend(*section_columns(sec, "shaft", m))
-    assert out.names[n0:] == ["shaft.torque@x=0", "shaft.torque@x=0.5", "shaft.bending_moment@x=0",
-                              "shaft.bending_moment@x=0.5"]
-    assert out.values.shape == (n0 + 4, m) and out.channels[n0].unit == "N m" and out.channels[n0].is_force
-    assert out.describe()["shaft.torque@x=0"]["dynamic_load_factor"] == pytest.approx(1.0)
+    doc = tomllib.loads((EXAMPLES / "hybrid_drill_string.toml").read_text())
+    doc["simulation"]["t_end"] = 4.0
+    doc["output"] = [{"element": "bit", "quantity": "torque"}, {"name": "mid torque", "x": 0.5, "quantity": "torque"}]
+    st = Study.parse(doc)
+    res = st.simulate()
+    out = st.outputs(res)
+    assert out.names == ["bit.torque", "mid torque"] and out.channels[1].unit == "N m"
+    sig = time_signals(st, res)
+    T, n = st.compiled.T, st.compiled.n_fe
+    assert st.hybrid.rayleigh == (0.0, 0.0)                   # undamped shaft: no damping term in the recovery
+    ref = section_loads(st.fe_model, T @ sig["x"][:n], qd=T @ sig["v"][:n], qdd=T @ sig["a"][:n], x=[0.5])["torque"][0]
+    assert np.allclose(out.column("mid torque"), ref, rtol=1e-12, atol=1e-12 * np.abs(ref).max())
+    assert out.describe()["mid torque"]["dynamic_load_factor"] > 1
 
 
 def test_steady_curve_outputs_of_a_model_without_elements():
@@ -488,5 +489,7 @@ def test_steady_curve_outputs_of_a_model_without_elements():
     along the curve (no element forces to evaluate)."""
     doc = tomllib.loads((EXAMPLES / "hybrid_afc_friction_rod.toml").read_text())
     doc["friction"] = []
-    r = Study.parse(doc).forced()
-    assert r.loads and all(len(o["amplitude"]) == r.omega.size for o in r.loads.values())
+    st = Study.parse(doc)
+    r = st.forced()
+    loads = st.outputs(r)
+    assert loads and all(len(o["amplitude"]) == r.omega.size for o in loads.values())

@@ -78,7 +78,6 @@ class HarmonicResult:
     relative: np.ndarray | None = None   # relative response (output minus base motion) for kinematic excitation
     warnings: list[str] = field(default_factory=list)
     full: np.ndarray | None = field(default=None, repr=False)   # (n_freq, n_dofs): every DOF (section loads)
-    loads: object = None                 # the named outputs (element loads, reactions) a caller attached
 
     @property
     def frequencies_hz(self) -> np.ndarray:

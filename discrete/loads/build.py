@@ -132,6 +132,9 @@ class DriveLoads:
         g = np.zeros(len(self.coords.names))
         if end == "ground":
             return g
+        if not isinstance(end, str):                # an FE node { x, dof } in a file without an FE shaft
+            raise ModelError("[[output]]", "x", getattr(end, "x", end), "a body or driver name: FE nodes (x = ..) "
+                             "are outputs of FE and hybrid files; bodies here: " + ", ".join(map(repr, self.coords.names)))
         if end not in self.coords.names:
             raise ModelError("[[output]]", "body", end, "one of " + ", ".join(map(repr, self.coords.names)))
         g[self.coords.names.index(end)] = 1.0

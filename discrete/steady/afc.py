@@ -70,7 +70,6 @@ class AFCResult:
     stop_cause: str = ""                  # "end" | "left_range" | "ds_min" | "max_steps" (continuation.Branch.stop)
     states: list = field(default_factory=list, repr=False)   # solver unknowns per point (HB coefficients
     #                                                          or shooting initial state), not in to_dict
-    loads: dict | None = field(default=None, repr=False)    # named outputs along the curve (a caller's), not in to_dict
 
     @property
     def z(self):

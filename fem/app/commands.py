@@ -47,11 +47,10 @@ def modal(args) -> int:
                          f"pictures are drawn for [[segment]] models; this is a {study.kind} model)")
     res = study.modal(args.modes)
     data = contract.modal_data(study, res)
-    shapes = None
     if study.kind in ("lumped", "hybrid"):
         data["linearisation"] = contract.linearisation_data(study)
-        shapes = study.modal_outputs(res)
-        data["load_shapes"] = contract.load_shapes(shapes)
+    shapes = study.outputs(res)
+    contract.with_outputs(data, shapes)
     if study.kind == "lumped":
         bound = _dunkerley(study)
         if bound is not None:
@@ -59,6 +58,7 @@ def modal(args) -> int:
     _emit(args, "modal", study, data)
     tables.modal_table(study, res)
     tables.linearisation_lines(data.get("linearisation"))
+    tables.outputs_lines(data)
     if getattr(args, "csv", None):
         columns.write(args.csv, columns.modal(res, shapes))
         print(f"wrote {args.csv}")
@@ -107,19 +107,14 @@ def forced(args) -> int:
     else:
         res = study.forced()
     data = contract.forced_data(study, res)
-    loads = getattr(res, "loads", None)
     if study.kind in ("lumped", "hybrid"):
         data["linearisation"] = contract.linearisation_data(study) if not data["steady"] else None
-    if isinstance(loads, dict):                # the nonlinear curve: amplitudes along it
-        data["loads"] = loads
-    elif loads is not None:
-        data["loads"] = contract.forced_loads(loads)
-        if loads.note:
-            data.setdefault("warnings", []).append(loads.note)
+    loads = study.outputs(res)
+    contract.with_outputs(data, loads)
     _emit(args, "forced", study, data)
     tables.forced_table(study, res, all_rows=args.all)
     tables.linearisation_lines(data.get("linearisation"))
-    tables.forced_loads_lines(data.get("loads"))
+    tables.outputs_lines(data)
     if "periodic" in data:
         per = data["periodic"]
         print(f"periodic load, period {per['period']:g} s, {per['harmonics']} harmonics: peak |q| over a period "
@@ -131,13 +126,15 @@ def forced(args) -> int:
         columns.write(args.csv, table)
         print(f"wrote {args.csv}")
     if args.plot:
-        from ..output.figures import plot_afc, plot_frf
+        from ..output.figures import plot_afc, plot_frf, plot_output_amplitudes
 
         if steady:
             plot_afc(res, args.plot)
             print(f"wrote {args.plot}")
         else:
             print(f"wrote {plot_frf(res, args.plot, study.title)}")
+        if loads is not None and not isinstance(loads, dict) and loads.channels:
+            print(f"wrote {plot_output_amplitudes(loads, _beside(args.plot, 'loads'), study.title)}")
     if steady and res.stop_cause == "interrupted":
         print(f"continuation {res.reason}", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -168,7 +165,7 @@ def simulate(args) -> int:
                          f"(this is a {study.kind} model)")
     with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
         res = study.simulate(progress=update)
-    outs = study.simulation_outputs(res)
+    outs = study.outputs(res)
     solver = res.solver if study.kind == "hybrid" else res
     every = study.doc.simulation.record_every
     idx = None
@@ -182,7 +179,7 @@ def simulate(args) -> int:
                    "record_every": int(every)}
     d = _emit(args, "simulate", study, contract.simulate_data(study, res, outs, history))
     tables.simulation_summary(study.title, d)
-    tables.outputs_summary(d)
+    tables.outputs_lines(d)
     if args.csv:
         if getattr(study.doc, "output", None):
             table = columns.selected_outputs(solver.t, outs, idx)
@@ -199,7 +196,7 @@ def simulate(args) -> int:
         has_e = solver.energy.size == solver.t.size
         names, X, V = _solved_states(study, solver)
         write_history(args.h5, command="simulate", title=study.title, kind=study.kind, t=solver.t[sel],
-                      outputs=_at(outs, sel), states=(names, X[:, sel], V[:, sel]),
+                      outputs=outs.take(sel), states=(names, X[:, sel], V[:, sel]),
                       energy=(solver.energy[sel], solver.work[sel]) if has_e else None, events=solver.events,
                       record_every=every, n_recorded=solver.t.size)
         print(f"wrote {args.h5}")
@@ -222,11 +219,10 @@ def _solved_states(study, solver):
     return list(solver.names), solver.x, solver.v
 
 
-def _at(outputs, idx):
-    """The named outputs at the samples idx."""
-    from ..loads.analyses import NamedOutputs
-
-    return NamedOutputs(outputs.axis, outputs.axis_values[idx], outputs.channels, outputs.values[:, idx])
+def _beside(path, what: str) -> Path:
+    """``<stem>_<what><suffix>`` next to ``path`` (a second figure of the same command)."""
+    p = Path(path)
+    return p.with_name(f"{p.stem}_{what}{p.suffix or '.png'}")
 
 
 # ---------------------------------------------------------------- sweep

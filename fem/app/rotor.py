@@ -18,12 +18,13 @@ pictures)."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import check_output_path, columns, contract, tables, write_csv, write_json
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -99,15 +100,21 @@ def _rub_records(study) -> list | None:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False, plot=False, png=True)
+    _check_outputs(args, json=False, plot=False, png=True, csv=False)
     if getattr(args, "vtu", None):
-        raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
-                         "for a rotor model file")
+        raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --png (3D whirl "
+                         "pictures) for a rotor model file")
     study = _load(args.model)
     _linear_note(study)
     res = study.modal(args.modes)
-    _emit(args, "modal", study, contract.modal_data(study, res) | {"linearisation": _rub_records(study)})
+    shapes = study.outputs(res)
+    data = contract.with_outputs(contract.modal_data(study, res) | {"linearisation": _rub_records(study)}, shapes)
+    _emit(args, "modal", study, data)
     modal_table(study, res)
+    tables.outputs_lines(data)
+    if getattr(args, "csv", None):
+        columns.write(args.csv, columns.modal(res, shapes))
+        print(f"wrote {args.csv}")
     if args.plot:
         from ..rotor.plots import plot_mode_orbits
 
@@ -165,15 +172,23 @@ def forced(args) -> int:
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
-    _emit(args, "forced", study, contract.forced_data(study, res) | {"linearisation": _rub_records(study)})
+    loads = study.outputs(res)
+    data = contract.with_outputs(contract.forced_data(study, res) | {"linearisation": _rub_records(study)}, loads)
+    _emit(args, "forced", study, data)
     forced_table(study, res, all_rows=args.all)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *response_columns(res))
+        write_csv(args.csv, *response_columns(res, loads))
         print(f"wrote {args.csv}")
     if args.plot:
+        from ..output.figures import plot_output_amplitudes
         from ..rotor.plots import plot_bode
 
         print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
+        if loads is not None and loads.channels:
+            p = Path(args.plot)
+            path = p.with_name(p.stem + "_loads" + (p.suffix or ".png"))
+            print(f"wrote {plot_output_amplitudes(loads, path, study.title)}")
     return 0
 
 
@@ -204,17 +219,21 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
         print(f"warning: {w}", file=out)
 
 
-def response_columns(res) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe."""
+def response_columns(res, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe and of every named output
+    (bearing reactions, section loads: ``loads``, :class:`fem.loads.analyses.NamedOutputs`)."""
     head = ["speed_rpm", "speed_rad_s"] + [f"{p.label} {q}" for p in res.probes
                                            for q in ("amplitude", "lag_deg", "re", "im")]
-    head += [f"{n}.force_{c} amplitude" for n in res.bearing_forces for c in ("y", "z")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} {q}" for n in names for q in ("amplitude", "lag_deg", "re", "im")]
     rows = []
     for j, s in enumerate(res.speeds_rad_s):
         row = [s * RPM, s]
         for p in res.probes:
             row += [p.amplitude[j], p.phase_lag_deg[j], p.value[j].real, p.value[j].imag]
-        row += [abs(f[j]) for pair in res.bearing_forces.values() for f in pair]
+        for k in range(len(names)):
+            z = complex(loads.values[k, j])
+            row += [abs(z), float(np.mod(-np.degrees(np.angle(z)), 360.0)), z.real, z.imag]
         rows.append(row)
     return head, rows
 
@@ -228,10 +247,13 @@ def campbell(args) -> int:
                          "model)")
     _linear_note(study)
     camp = study.campbell(args.modes)
-    _emit(args, "campbell", study, contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)})
+    loads = study.outputs(camp)
+    data = contract.with_outputs(contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)}, loads)
+    _emit(args, "campbell", study, data)
     campbell_table(study, camp)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *campbell_columns(camp))
+        write_csv(args.csv, *campbell_columns(camp, loads))
         print(f"wrote {args.csv}")
     if args.png:
         from ..rotor.plots import plot_campbell
@@ -261,16 +283,20 @@ def campbell_table(study, camp, out=None) -> None:
               f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}", file=out)
 
 
-def campbell_columns(camp) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode."""
+def campbell_columns(camp, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode,
+    then the amplitude of every named output (the reactions of each tracked mode: ``loads``)."""
     head = ["speed_rpm", "speed_rad_s"] + [f"mode{j + 1} {q}" for j in range(camp.n_modes)
                                            for q in ("omega_rad_s", "log_decrement", "whirl")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} amplitude" for n in names]
     rows = []
     for i, s in enumerate(camp.speeds_rad_s):
         row = [s * RPM, s]
         for j in range(camp.n_modes):
             ld = camp.log_decrement[i, j]
             row += [camp.omega_damped_rad_s[i, j], ld if np.isfinite(ld) else "", camp.whirl[i][j]]
+        row += [abs(complex(loads.values[k, i])) for k in range(len(names))]
         rows.append(row)
     return head, rows
 
@@ -283,25 +309,21 @@ def simulate(args) -> int:
     study = _load(args.model)
     with progress_bar(0.0, 1.0, "run-up", "") as update:
         res = study.run_up(progress=update)
-    data = contract.run_up_data(study, res)
+    outs = study.outputs(res)
+    data = contract.with_outputs(contract.run_up_data(study, res), outs)
     whirl = _whirl(res)
     if whirl is not None:
         data["whirl"] = whirl[1].to_dict()
     doc = _emit(args, "simulate", study, data)
     run_up_table(study, res)
+    tables.outputs_lines(data)
     if whirl is not None:
         whirl_table(whirl[1])
     if args.csv:
-        head = ["t", "speed_rad_s"] + [_probe_column(res, k, c) for k in range(res.probe_x.size) for c in ("y", "z")] + \
-            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")] + \
-            [f"{n}.force_{c}" for n in res.bearing_forces for c in ("y", "z")]
-        cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
-            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))] + \
-            [f for pair in res.bearing_forces.values() for f in pair]
-        write_csv(args.csv, head, np.column_stack(cols).tolist())
+        write_csv(args.csv, *run_up_columns(study, res, outs))
         print(f"wrote {args.csv}")
     if getattr(args, "h5", None):
-        print(f"wrote {_run_up_h5(study, res, args.h5)}")
+        print(f"wrote {_run_up_h5(study, res, outs, args.h5)}")
     if args.png:
         from pathlib import Path
 
@@ -312,6 +334,12 @@ def simulate(args) -> int:
         print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
         print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+        if outs.channels:
+            from ..output.figures import plot_loads
+
+            loads = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe")]
+            if loads:
+                print(f"wrote {plot_loads(outs.subset(loads), out / 'loads.png', study.title)}")
         if whirl is not None:
             from ..rotor.plots import plot_cascade, plot_whirl_onset
 
@@ -343,30 +371,29 @@ def whirl_table(onset, out=None) -> None:
           f"{onset.growth:.3g} x", file=out)
 
 
-def _run_up_h5(study, res, path):
-    """The run-up's time history in the --h5 container (docs/outputs.md): the orbits at the probes, the rub
-    forces and the bearing reactions as named outputs, the speed, the rub events."""
+def run_up_columns(study, res, outs) -> tuple[list[str], list]:
+    """CSV of a run-up: t, speed, the orbit (y, z) at every probe, normal force, slip and contact flag of
+    every rub, then the other named outputs (bearing reactions, section loads); with [[output]] tables: t
+    and those outputs only."""
+    extra = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe", "rub")]
+    if getattr(study.doc, "output", None):
+        return ["t"] + outs.names, np.column_stack([res.t] + list(outs.values)).tolist()
+    head = ["t", "speed_rad_s"] + [_probe_column(res, k, c) for k in range(res.probe_x.size) for c in ("y", "z")] + \
+        [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")] + \
+        [outs.channels[k].name for k in extra]
+    cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
+        [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))] + \
+        [outs.values[k] for k in extra]
+    return head, np.column_stack(cols).tolist()
+
+
+def _run_up_h5(study, res, outs, path):
+    """The run-up's time history in the --h5 container (docs/outputs.md): its named outputs (speed, probe
+    orbits, rub normal forces, bearing reactions, section loads) and the rub events."""
     from types import SimpleNamespace
 
-    from discrete.loads import Channel
-
-    from ..loads.analyses import NamedOutputs
     from ..output.history import write_history
 
-    chans, cols = [Channel("speed", "velocity", "rad/s", "run_up", "rotor")], [res.speed]
-    for k in range(res.probe_x.size):
-        for c, a in (("y", res.orbit_y), ("z", res.orbit_z)):
-            name = _probe_column(res, k, c)
-            chans.append(Channel(name, "displacement", "m", "probe", name.rsplit(".", 1)[0]))
-            cols.append(a[:, k])
-    for r in res.rubs:
-        chans.append(Channel(f"{r.name}.normal_force", "force", "N", "rub", r.name))
-        cols.append(r.normal_force)
-    for n, (fy, fz) in res.bearing_forces.items():
-        for c, f in (("y", fy), ("z", fz)):
-            chans.append(Channel(f"{n}.force_{c}", "reaction", "N", "bearing", n))
-            cols.append(f)
-    outs = NamedOutputs("t", res.t, chans, np.array(cols))
     events = [SimpleNamespace(t=e["t"], kind=e["kind"], element=e.get("rub", ""), impulse=0.0) for e in res.events]
     return write_history(path, command="simulate", title=study.title, kind="rotor", t=res.t, outputs=outs,
                          events=events)
@@ -401,10 +428,6 @@ def run_up_table(study, res, out=None) -> None:
         name = res.probe_names[k] if k < len(res.probe_names) and res.probe_names[k] else ""
         print(f"  probe {name + ' ' if name else ''}x = {x:g} m: peak orbit radius {r[j]:.4e} m at "
               f"{res.speed[j] * RPM:.1f} rev/min", file=out)
-    for name, (fy, fz) in res.bearing_forces.items():
-        mag = np.hypot(fy, fz)
-        j = int(np.argmax(mag)) if mag.size else 0
-        print(f"  bearing {name!r}: peak force {mag.max(initial=0.0):.4g} N at {res.speed[j] * RPM:.1f} rev/min", file=out)
     for r in res.rubs:
         fc = r.first_contact
         first = "never" if fc is None else f"first at t = {fc['t']:.5g} s ({fc['speed_rad_s'] * RPM:.1f} rev/min)"

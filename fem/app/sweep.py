@@ -175,14 +175,14 @@ def _evaluate(doc: dict, values: dict, analysis: str, periods: int) -> dict:
                    "period_doubling_intervals_rad_s": [list(j) for j in r.unstable_intervals("flip")],
                    "n_points": int(r.omega.size), "reason": r.reason,
                    "outputs": {n: {"max_amplitude": o["max_amplitude"], "at_omega_rad_s": o["at_omega_rad_s"]}
-                               for n, o in (r.loads or {}).items()}}
+                               for n, o in (study.outputs(r) or {}).items()}}
         else:
             r = study.simulate()
             res = {"period": r.period, "energy_error": r.energy_error, "n_events": len(r.events),
                    "stopped_early": bool(r.stopped_early),
                    "x_max": {n: float(np.max(r.x[i])) for i, n in enumerate(r.names)},
                    "x_min": {n: float(np.min(r.x[i])) for i, n in enumerate(r.names)},
-                   "outputs": _summaries(study.simulation_outputs(r))}
+                   "outputs": _summaries(study.outputs(r))}
         return {"values": values, "status": "ok", "result": _clean(res)}
     except Exception as exc:  # a failed point is a record, not a crash of the sweep
         return {"values": values, "status": "error", "error": f"{type(exc).__name__}: {exc}"}

@@ -8,8 +8,8 @@
 * :func:`forced_outputs`: the complex amplitude of every output at every frequency.
 
 Each returns a :class:`NamedOutputs`: one table of named columns over an axis (time, mode, frequency),
-the one shape the output layer writes (JSON, CSV, --h5, plots).  Any other source of named quantities
-(the section loads of FE shafts) joins a table with :meth:`NamedOutputs.extend`."""
+the one shape the output layer writes (JSON, CSV, --h5, plots).  The section loads and reactions of FE
+shafts and rotors (:mod:`fem.loads.shaft`) join a table with :meth:`NamedOutputs.extend`."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -22,8 +22,9 @@ from discrete.loads import LoadMap, amplitude_summary, summary
 @dataclass
 class NamedOutputs:
     """``values[k]`` is the column ``channels[k]`` over ``axis_values`` (``axis``: "t" (s), "mode" (1, 2,
-    ...) or "omega" (rad/s)); ``summaries``: {name: derived quantities}; ``elements``: {element name:
-    impacts, impulse sum, friction work} (time histories)."""
+    ...) or "omega" (rad/s: the frequencies of a forced response, the speeds of an unbalance response));
+    ``summaries``: {name: derived quantities}; ``elements``: {element name: impacts, impulse sum, friction
+    work} (time histories); ``notes``: what the values leave out or how they are scaled."""
 
     axis: str
     axis_values: np.ndarray
@@ -31,7 +32,7 @@ class NamedOutputs:
     values: np.ndarray
     summaries: dict = field(default_factory=dict)
     elements: dict = field(default_factory=dict)
-    note: str = ""
+    notes: list = field(default_factory=list)
 
     @property
     def names(self) -> list[str]:
@@ -40,19 +41,64 @@ class NamedOutputs:
     def column(self, name: str) -> np.ndarray:
         return self.values[self.names.index(name)]
 
-    def extend(self, channels: list, values: np.ndarray, summaries: dict | None = None) -> None:
-        """Add columns of another source over the same axis (e.g. FE section loads:
-        :func:`fem.loads.sources.section_columns`); a time axis gets their derived quantities."""
+    def extend(self, channels: list, values: np.ndarray, notes=()) -> None:
+        """Add the columns of another source over the same axis (the section loads and reactions of FE
+        shafts and rotors: :mod:`fem.loads.shaft`), with their derived quantities."""
+        if not channels:
+            self.notes += [n for n in notes if n not in self.notes]
+            return
+        taken = set(self.names)
+        clash = next((c.name for c in channels if c.name in taken), None)
+        if clash is not None:
+            from discrete.errors import ModelError
+
+            raise ModelError("outputs", "name", clash, "a name used by one output only")
         values = np.asarray(values).reshape(len(channels), self.axis_values.size)
         self.channels = list(self.channels) + list(channels)
         self.values = np.vstack([self.values, values]) if self.values.size else values
-        if summaries is None and self.axis == "t":
-            summaries = {c.name: summary(self.axis_values, np.real(values[k]), c.is_force) for k, c in enumerate(channels)}
-        self.summaries.update(summaries or {})
+        self.summaries.update(derived(self.axis, self.axis_values, channels, values))
+        self.notes += [n for n in notes if n not in self.notes]
+
+    def take(self, idx) -> "NamedOutputs":
+        """The outputs at the samples ``idx`` of the axis (decimation of a time history)."""
+        return NamedOutputs(self.axis, self.axis_values[idx], self.channels, self.values[:, idx], self.summaries,
+                            self.elements, self.notes)
+
+    def subset(self, idx) -> "NamedOutputs":
+        """The columns ``idx`` (indices of channels) over the same axis."""
+        idx = list(idx)
+        return NamedOutputs(self.axis, self.axis_values, [self.channels[k] for k in idx], self.values[idx],
+                            {self.channels[k].name: self.summaries.get(self.channels[k].name, {}) for k in idx},
+                            self.elements, self.notes)
+
+    def ordered(self, names: list) -> None:
+        """Put the columns in the order of ``names`` (the [[output]] tables' order)."""
+        idx = [self.names.index(n) for n in names]
+        self.channels = [self.channels[i] for i in idx]
+        self.values = self.values[idx] if self.values.size else self.values
 
     def describe(self) -> dict:
-        """{name: channel description + derived quantities} (the JSON ``outputs``)."""
+        """{name: channel description + derived quantities} (the JSON ``named_outputs`` of a time history)."""
         return {c.name: {**c.describe(), **self.summaries.get(c.name, {})} for c in self.channels}
+
+
+def derived(axis: str, axis_values, channels, values) -> dict:
+    """{name: derived quantities} of columns over an axis: time histories -- peak, max, min, mean, rms,
+    peak-to-peak, dynamic load factor (:func:`discrete.loads.summary`); frequencies (speeds) -- the peak
+    amplitude and its frequency (speed); modes -- none."""
+    out = {}
+    for k, c in enumerate(channels):
+        if axis == "t":
+            out[c.name] = summary(axis_values, np.real(values[k]), c.is_force)
+        elif axis in ("omega", "speed"):
+            s = amplitude_summary(values[k])
+            k_peak = s.pop("peak_index")
+            if k_peak is not None:
+                s[f"peak_{axis}_rad_s"] = float(np.asarray(axis_values)[k_peak])
+            out[c.name] = s
+        else:
+            out[c.name] = {}
+    return out
 
 
 # ------------------------------------------------------------------ time histories
@@ -64,7 +110,7 @@ def time_outputs(lm: LoadMap, t, x, v, a, f_el, f_app, loads=None, events=()) ->
     Y = lm.values(x, v, a, f_el, f_app, t)
     Y = np.real_if_close(Y)
     out = NamedOutputs("t", t, list(lm.channels), np.asarray(Y, dtype=float))
-    out.summaries = {c.name: summary(t, out.values[k], c.is_force) for k, c in enumerate(lm.channels)}
+    out.summaries = derived("t", t, out.channels, out.values)
     if loads is not None:
         out.elements = element_summaries(loads, t, v, f_el, events)
     return out
@@ -124,7 +170,7 @@ def modal_outputs(lm: LoadMap, omega: np.ndarray, shapes: np.ndarray) -> NamedOu
     Y = lm.values(Q, np.zeros_like(Q), -(om ** 2)[None, :] * Q, None, None)
     Y = np.real_if_close(Y)
     out = NamedOutputs("mode", np.arange(1, om.size + 1), list(lm.channels), np.asarray(Y))
-    out.summaries = {c.name: {} for c in lm.channels}
+    out.summaries = derived("mode", out.axis_values, out.channels, out.values)
     return out
 
 
@@ -141,11 +187,5 @@ def forced_outputs(lm_at, omegas: np.ndarray, Q: np.ndarray, loads_at) -> NamedO
         cols.append(lm.values(q, 1j * w * q, -w * w * q, None, loads_at(w))[:, 0])
     Y = np.array(cols).T if cols else np.zeros((0, 0), dtype=complex)
     out = NamedOutputs("omega", om, list(chans or []), Y)
-    out.summaries = {c.name: amplitude_summary(Y[k]) for k, c in enumerate(out.channels)}
-    for k, c in enumerate(out.channels):
-        s = out.summaries[c.name]
-        if s["peak_index"] is not None:
-            s["peak_omega_rad_s"] = float(om[s.pop("peak_index")])
-        else:
-            s.pop("peak_index")
+    out.summaries = derived("omega", om, out.channels, Y)
     return out

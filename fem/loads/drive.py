@@ -36,25 +36,55 @@ def drive_loads(study, linear: bool = False, system=None, *, extra_C=None, extra
     return loads
 
 
-def selected(study, loads):
-    """The file's [[output]] channels (or the defaults) of ``loads``."""
-    return outputs_map(getattr(study.doc, "output", ()), loads)
+def selected(study, loads, order: dict | None = None):
+    """The file's [[output]] channels (or the defaults) of ``loads`` (``order``: see
+    :func:`fem.loads.select.outputs_map`)."""
+    return outputs_map(getattr(study.doc, "output", ()), loads, order)
 
 
 # ------------------------------------------------------------------ time domain
-def simulation_outputs(study, res):
-    """The named outputs of a simulation result (lumped: the solver's result; hybrid: its ``solver``)."""
+def time_signals(study, res) -> dict:
+    """The signals every output of a run is a function of, at every recorded instant: ``t``, ``x``, ``v``,
+    ``a`` (the solved coordinates, drivers included), ``F`` (each element's force along s) and ``f`` (the
+    applied loads), and ``notes``.  The event solver records a and f; the Moreau-Jean scheme records
+    each step's mean impulse / dt as F, and a comes from the equations of motion with it; the regularised
+    integrator records no element forces: a is the recorded velocity differentiated (second order), and
+    the element forces are unknown (``F`` None)."""
     solver = res.solver if study.kind == "hybrid" else res
     loads = study.time_loads
-    lm = selected(study, loads)
-    a, f_app = solver.acceleration, solver.applied
-    F = solver.element_forces
-    if F is None:
-        F = np.zeros((len(loads.elements), solver.t.size))
-    if a is None:                         # regularised / Moreau-Jean: from the equations with the recorded forces
+    a, f_app, F = solver.acceleration, solver.applied, solver.element_forces
+    notes = []
+    problem = None
+    if a is None or f_app is None:
         problem = study.compiled.problem if study.kind == "hybrid" else study.problem_spec().problem()
+    if F is None and loads.elements:
+        t = solver.t
+        a = np.gradient(solver.v, t, axis=1, edge_order=2) if t.size > 2 else np.zeros_like(solver.v)
+        f_app = problem.recover(t, solver.x, solver.v, np.zeros((len(loads.elements), t.size)))[1]
+        notes.append("the regularised integrator records no element forces: the element forces, and the loads "
+                     "that depend on them, are not outputs of this run; accelerations are the recorded velocities "
+                     "differentiated")
+    elif a is None:                       # Moreau-Jean: from the equations with the recorded forces
+        F = np.zeros((0, solver.t.size)) if F is None else F
         a, f_app = problem.recover(solver.t, solver.x, solver.v, F)
-    return time_outputs(lm, solver.t, solver.x, solver.v, a, F, f_app, loads, solver.events)
+    return {"t": solver.t, "x": solver.x, "v": solver.v, "a": a, "F": F, "f": f_app, "notes": notes,
+            "events": solver.events}
+
+
+def simulation_outputs(study, res, order: dict | None = None):
+    """(named outputs, signals) of a simulation result (lumped: the solver's result; hybrid: its
+    ``solver``); the signals are :func:`time_signals`'."""
+    loads = study.time_loads
+    lm = selected(study, loads, order)
+    sig = time_signals(study, res)
+    F = sig["F"]
+    if F is None:                         # no element forces recorded: the outputs that need them are left out
+        keep = [c.name for k, c in enumerate(lm.channels) if not np.any(lm.Fe[k])]
+        lm = lm.take(keep)
+        F = np.zeros((len(loads.elements), sig["t"].size))
+    out = time_outputs(lm, sig["t"], sig["x"], sig["v"], sig["a"], F, sig["f"], loads, sig["events"])
+    out.notes += sig["notes"]
+    return out, sig
 
 
 # ------------------------------------------------------------------ linear analyses
@@ -92,8 +122,9 @@ class LinearModel:
         return lm.substituted(*self.lin.element_rows(omega))
 
 
-def modal_outputs_of(study, model: LinearModel, res):
-    lm = selected(study, model.loads).substituted(*model.lin.element_rows(None))
+def modal_outputs_of(study, model: LinearModel, res, order: dict | None = None):
+    """The load shape of every selected output for each mode shape of ``res`` (the linearised model)."""
+    lm = selected(study, model.loads, order).substituted(*model.lin.element_rows(None))
     n = model.loads.coords.n
     return modal_outputs(lm, res.omega_rad_s, np.asarray(res.shapes)[:n])
 
@@ -130,3 +161,38 @@ def forced_outputs_of(study, model: LinearModel, res, sources):
         return sel.substituted(*model.lin.element_rows(w))
 
     return forced_outputs(lm_at, res.omega_rad_s, Q, loads_at)
+
+
+def forced_outputs_of_study(study, res):
+    """The named outputs of a lumped file's linear forced response ``res`` (complex amplitudes, element
+    loads included): the linearised system with the motors' complex stiffness, the [[load]] tables as
+    applied loads, the damping of the analysis (Rayleigh, hysteretic) in the reactions and gear forces."""
+    from ..modelfile.build import linear as build_linear
+
+    from discrete.linear.periodic_forced import PeriodicForcedResult
+
+    if study.kind != "lumped" or res.full is None or isinstance(res, PeriodicForcedResult):
+        return None                       # a periodic response: its harmonics are not one forced response
+    system = study.linear_model.system
+    if getattr(study.doc, "motor", None):
+        system = study._with_motors(system)
+    base = study.linear_system()
+    damping = build_linear.damping(study.doc.damping)
+    n = base.n_dofs
+    Ks = system.K.toarray()[:n, :n]
+    extra_C = extra_H = None
+    if damping.type == "rayleigh":
+        extra_C = damping.alpha * base.M.toarray() + damping.beta * Ks
+    elif damping.type == "hysteretic":
+        extra_H = 2 * damping.delta * Ks
+    sources = linear_sources(study, base)
+    loads = drive_loads(study, linear=True, system=base, extra_C=extra_C, extra_H=extra_H, hysteretic=True,
+                        sources=sources, undamped=damping.type == "none")
+    model = LinearModel(study, base, loads)
+    if damping.type == "none":
+        model.lin.Lv = 0.0 * model.lin.Lv
+    out = forced_outputs_of(study, model, res, sources)
+    if damping.type == "modal":
+        out.notes.append("modal damping has no matrix form: the reactions and gear forces leave out its forces "
+                         "(the element deflections and forces are exact)")
+    return out

@@ -11,7 +11,7 @@ from discrete.errors import ModelError
 from discrete.loads import Coordinates, ElementSpec, LinkSpec, SourceSpec, build
 
 from ..hybrid.build import NodeRef, fe_dof
-from .names import force_name, link_name, node_name
+from .names import force_name, link_name, node_name, support_name
 
 ROTATION = {"theta", "w_x", "phi", "v_x"}
 TRANSLATION = {"u", "w", "v"}
@@ -59,7 +59,7 @@ def hybrid_loads(doc, fe, compiled, system=None, *, extra_C=None, extra_H=None, 
               and abs(fem_model.system.dof_x[j] - t.x) <= 1e-9 * max(fem_model.model.length, 1e-300)]
         for j in js:
             fld = fem_model.system.dof_field[j]
-            name = node_name("support", i, t.x, fld if len(js) > 1 else None)
+            name = support_name(i, t, fld if len(js) > 1 else None)
             held.append((name, "support", comp.held[j]))
     coords = Coordinates(names=names, T=np.eye(n), solved=list(range(n)), M=_dense(sys_.M), C=_dense(sys_.C),
                          K=_dense(sys_.K), H=_dense(sys_.H), motion=motion, extra_C=extra_C, extra_H=extra_H,

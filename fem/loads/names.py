@@ -37,3 +37,34 @@ def force_name(index: int, t) -> str:
 
 def node_name(kind: str, index: int, x: float, dof: str | None = None) -> str:
     return f"{kind}[{index}] x={x:g}" + (f" {dof}" if dof else "")
+
+
+# ------------------------------------------------------------------ FE shafts and rotors
+SHAFT = "shaft"
+"""The ``where`` of the section loads of the FE shaft of an FE, hybrid or rotor file."""
+
+
+def section_name(quantity: str, x: float, side: str | None = None, where: str = SHAFT) -> str:
+    """``shaft.<quantity>@x=<x>``; a station reported on both sides of a jump (or asked for one side)
+    carries ``-`` (just left of x) or ``+`` (just right), e.g. ``shaft.shear_force@x=0.6-``."""
+    mark = {"left": "-", "right": "+"}.get(side, "")
+    return f"{where}.{quantity}@x={x:g}{mark}"
+
+
+def support_name(index: int, t, field: str | None = None) -> str:
+    """An FE ``[[support]]`` (#index): its ``name``, else ``support[<index>] x=<x>``; ``field``: the DOF, for
+    a support that holds several (``support[1] x=0 w_x``)."""
+    base = getattr(t, "name", None) or f"support[{index}] x={t.x:g}"
+    return base + (f" {field}" if field else "")
+
+
+def bearing_names(rotor) -> list[str]:
+    """The names of a rotor's bearings in its order: ``name``, else ``<table>[<number>] x=<x>`` numbered
+    per model-file table (``bearing[1] x=0``, ``journal_bearing[2] x=1.2``), as its error messages do."""
+    numbers: dict = {}
+    out = []
+    for b in rotor.bearings:
+        table = getattr(b, "kind", "bearing")
+        numbers[table] = numbers.get(table, 0) + 1
+        out.append(b.name or f"{table}[{numbers[table]}] x={b.x:g}")
+    return out

@@ -12,16 +12,23 @@ from discrete.loads import Channel, LoadMap, unit_of
 from .names import end_name
 
 _FORCE_WORDS = ("force", "torque", "moment")
+SECTION_WORDS = ("torque", "moment", "force", "shear")      # at x: the section loads of fem.loads.shaft
 
 
-def outputs_map(tables, loads) -> LoadMap:
-    """The channels of the file's ``[[output]]`` tables (``tables`` empty: the default channels)."""
+def outputs_map(tables, loads, order: dict | None = None) -> LoadMap:
+    """The channels of the file's ``[[output]]`` tables (``tables`` empty: the default channels);
+    ``order`` gets {channel name: table index}.  Tables asking for a section load of a hybrid file's FE
+    shaft (x with torque | moment | force | shear) are :mod:`fem.loads.shaft`'s."""
     if not tables:
         return loads.map
     out = LoadMap.empty(loads.coords.n, loads.map.Fe.shape[1], loads.map.Fa.shape[1])
     for i, t in enumerate(tables, 1):
+        if getattr(t, "x", None) is not None and t.quantity in SECTION_WORDS:
+            continue
         for channel, rows in _resolve(t, i, loads):
             out.add(channel, **rows)
+            if order is not None:
+                order[channel.name] = i
     return out
 
 

@@ -26,15 +26,23 @@ def harmonic(res, loads=None):
 
 
 def modal(res, shapes=None):
-    """Modes: number, f [Hz], omega [rad/s] (None where not reliable), then the load shape of every named
-    output (its value for the mode shape as written in the JSON)."""
+    """Modes: number, f [Hz], omega [rad/s] (the damped frequency of a rotor's complex mode; empty where not
+    reliable), then the load shape of every named output (its value for the mode shape as written in the
+    JSON: real, or ``<name> re`` and ``<name> im`` for complex modes)."""
     ok = np.asarray(res.reliable) | np.asarray(res.rigid)
+    omega = getattr(res, "omega_damped_rad_s", None)
+    omega = res.omega_rad_s if omega is None else omega
     names = shapes.names if shapes is not None else []
-    head = ["mode", "f_hz", "omega_rad_s"] + names
+    values = shapes.values if shapes is not None else np.zeros((0, omega.size))
+    complex_ = np.iscomplexobj(values) and bool(np.any(np.imag(values)))
+    head = ["mode", "f_hz", "omega_rad_s"] + ([f"{n} {p}" for n in names for p in ("re", "im")] if complex_ else names)
     rows = []
-    for r in range(res.omega_rad_s.size):
-        row = [r + 1, res.frequencies_hz[r] if ok[r] else "", res.omega_rad_s[r] if ok[r] else ""]
-        row += [float(np.real(shapes.values[k, r])) for k in range(len(names))]
+    for r in range(omega.size):
+        row = [r + 1, res.frequencies_hz[r] if ok[r] else "", omega[r] if ok[r] else ""]
+        if complex_:
+            row += [v for k in range(len(names)) for v in (float(values[k, r].real), float(values[k, r].imag))]
+        else:
+            row += [float(np.real(values[k, r])) for k in range(len(names))]
         rows.append(row)
     return head, rows
 
@@ -98,7 +106,8 @@ def hybrid(res, outputs=None):
     comp = res.compiled
     bodies = list(range(comp.n_fe, comp.system.n_dofs))
     solver = res.solver
-    idx = np.searchsorted(solver.t, res.t).clip(0, solver.t.size - 1)
+    idx = res.sample_index if res.sample_index is not None else \
+        np.searchsorted(solver.t, res.t).clip(0, solver.t.size - 1)
     head = ["t"] + sys_.labels() + [f"{comp.system.dof_name[i]}.{c}" for i in bodies for c in ("x", "v")]
     names, extra = _output_columns(outputs, idx)
     rows = []

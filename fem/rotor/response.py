@@ -128,7 +128,6 @@ class UnbalanceResponse:
     n_dofs: int
     method: str
     warnings: list = field(default_factory=list)
-    bearing_forces: dict = field(default_factory=dict)   # {bearing name: (F_y, F_z)} complex, on the shaft, N
 
     def orbits(self) -> Orbits:
         """Orbit ellipses, arrays (n_speeds, n_nodes)."""
@@ -295,9 +294,6 @@ def unbalance_response(rotor, unbalances, speeds, *, probes=None, operating_rang
     res = UnbalanceResponse(speeds_rad_s=s, response=Q, node_x=rs.node_x, v_index=rs.node_dofs["v"],
                             w_index=rs.node_dofs["w"], probes=out, peaks=[], operating_range=operating_range,
                             n_dofs=int(solver.idx.size), method=method)
-    from .bearing_loads import bearing_forces
-
-    res.bearing_forces = bearing_forces(rs, s, lambda idx: Q[:, idx])
     if find_peaks:
         for j, p in enumerate(probes):
             res.peaks += _peaks(solver, rs, p, j, s, out[j].amplitude, operating_range, res.warnings)

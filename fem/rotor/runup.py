@@ -151,7 +151,9 @@ class RunUpResult:
     bearings: list = field(default_factory=list)
     integrator: str = "DOP853"
     probe_names: list = field(default_factory=list)     # the named thing at each probe ("" if none)
-    bearing_forces: dict = field(default_factory=dict)  # {bearing name: (F_y, F_z)} on the shaft, N
+    eta: np.ndarray | None = field(default=None, repr=False)       # (n_t, n_basis) the reduced coordinates
+    eta_dot: np.ndarray | None = field(default=None, repr=False)   # (n_t, n_basis) their rates
+    basis: np.ndarray | None = field(default=None, repr=False)     # (n_dofs, n_basis): q = basis @ eta
 
     def probe_label(self, k: int) -> str:
         """The name of probe k in the outputs: the disc/bearing/coupling/rub there, else x=<x>."""
@@ -169,7 +171,6 @@ class RunUpResult:
                "peak_amplitude": {(self.probe_names[k] if k < len(self.probe_names) and self.probe_names[k]
                                    else f"{x:g}"): float(np.hypot(self.orbit_y[:, k], self.orbit_z[:, k]).max(initial=0.0))
                                   for k, x in enumerate(self.probe_x)},
-               "bearing_reactions": {n: _force_summary(self.t, fy, fz) for n, (fy, fz) in self.bearing_forces.items()},
                "reduction": self.reduction, "warnings": list(self.warnings)}
         if self.bearings:
             out["bearings"] = [b.to_dict() for b in self.bearings]
@@ -178,18 +179,8 @@ class RunUpResult:
         if samples:
             out["samples"] = {"t": self.t.tolist(), "speed_rad_s": self.speed.tolist(),
                               "orbit_y": self.orbit_y.T.tolist(), "orbit_z": self.orbit_z.T.tolist(),
-                              "probes": [self.probe_label(k) for k in range(self.probe_x.size)],
-                              "bearing_force_y": {n: f[0].tolist() for n, f in self.bearing_forces.items()},
-                              "bearing_force_z": {n: f[1].tolist() for n, f in self.bearing_forces.items()}}
+                              "probes": [self.probe_label(k) for k in range(self.probe_x.size)]}
         return out
-
-
-def _force_summary(t, fy, fz) -> dict:
-    """Peak of the force's magnitude, peak and rms of each component (a bearing reaction in time)."""
-    from discrete.loads import summary
-
-    mag = np.hypot(fy, fz)
-    return {"unit": "N", "peak": float(mag.max(initial=0.0)), "y": summary(t, fy, True), "z": summary(t, fz, True)}
 
 
 def _laws(rs: RotorSystem, red: ReducedRotor, rubs) -> list[RadialClearance]:
@@ -339,11 +330,8 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     iw = np.array([rs.dof(x, "w", "probe") for x in xs], dtype=int)
     orbit_y, orbit_z = traj.eta @ red.T[iv].T, traj.eta @ red.T[iw].T
     speed = ramp.speed(traj.t)
-    from .bearing_loads import bearing_forces
     from .response import place_name
 
-    bearings = bearing_forces(rs, speed, lambda idx: traj.eta @ red.T[idx].T, lambda idx: traj.eta_dot @ red.T[idx].T,
-                              linear_only=True)
     rub_at = {float(r.x): (r.name or "") for r in rubs}
     names = [place_name(rs.rotor, x) or rub_at.get(float(x), "") for x in xs]
     hist = []
@@ -375,7 +363,7 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     reduction = red.report()
     reduction["frequency_check"] = red.frequency_check(w_top, min(4, red.n_modes))
     return RunUpResult(t=traj.t, speed=speed, probe_x=np.array(xs), orbit_y=orbit_y, orbit_z=orbit_z, rubs=hist,
-                       probe_names=names, bearing_forces=bearings,
+                       probe_names=names, eta=traj.eta, eta_dot=traj.eta_dot, basis=red.T,
                        events=traj.events, works=dict(traj.works), energy_start=traj.energy_start,
                        energy_end=traj.energy_end, energy_error=float(err), reduction=reduction, method=run.method,
                        stopped=traj.stopped, steps=traj.steps, wall_time=time.perf_counter() - wall, warnings=warnings,

@@ -33,7 +33,7 @@ def _balance(study, res) -> float:
     return worst
 
 
-@case("loads-geared-mesh", group="loads")
+@case("loads-lumped-geared-mesh", group="loads")
 def geared_mesh():
     """examples/geared_mesh.toml (motor - coupling - pinion - mesh with backlash - wheel - output shaft - drum
     - brake).  (a) Every body balances at every recorded instant: inertia times the solver's acceleration (the
@@ -46,13 +46,13 @@ def geared_mesh():
     still rings, tolerance 1 %.  (d) drivefem modal's three frequencies with the mesh closed (linearise =
     "closed") equal the roots of det(K - w^2 M) of K, M assembled here by hand from the file's numbers
     (the mesh a spring k along s = 0.15 phi_w - 0.05 phi_p), 1e-10."""
-    name = "loads-geared-mesh"
+    name = "loads-lumped-geared-mesh"
     out = []
     st = Study.parse(example_doc(GEARED))
     res = st.simulate()
     out.append(check(name, SRC, "body balance: max |I a - sum of loads| / scale", 0.0, _balance(st, res), 1e-9,
                      scale=1.0))
-    o = st.simulation_outputs(res)
+    o = st.outputs(res)
     F = o.column("mesh force")
     sel = res.t >= res.t[-1] - 0.25
     from discrete.loads import time_mean
@@ -74,7 +74,7 @@ def geared_mesh():
     return out
 
 
-@case("loads-gap-drive-modal", group="loads")
+@case("loads-lumped-gap-drive-modal", group="loads")
 def gap_drive_modal():
     """The issue's repro: driver motor, bodies pinion 0.02 and wheel 0.5, spring motor-pinion 2e4,
     [[gap]] pinion-wheel ratios [0.05, 0.15], k = 2e8, delta = 5e-5.  drivefem modal takes the mesh closed
@@ -82,7 +82,7 @@ def gap_drive_modal():
     det(K - w^2 M), 1e-12 (two symmetric 2x2 eigenproblems in double precision).  The preloaded strand of
     examples/discrete_strand_spool.toml is taut at rest: the spool's frequency is the file's k = 54.15 rad/s
     (k_strand r^2 / J), 1e-12."""
-    name = "loads-gap-drive-modal"
+    name = "loads-lumped-gap-drive-modal"
     doc = {"driver": [{"name": "motor"}], "body": [{"name": "pinion", "inertia": 0.02}, {"name": "wheel", "inertia": 0.5}],
            "spring": [{"between": ["motor", "pinion"], "k": 2e4}],
            "gap": [{"name": "mesh", "between": ["pinion", "wheel"], "ratios": [0.05, 0.15], "k": 2e8, "delta": 5e-5}],
@@ -97,17 +97,17 @@ def gap_drive_modal():
     return out
 
 
-@case("loads-multipliers-and-reactions", group="loads")
+@case("loads-lumped-multipliers-and-reactions", group="loads")
 def multipliers_and_reactions():
     """Seed 000 (examples/discrete_seed000_stick_slip.toml): in every stick phase the bit's friction output is
     the Lagrange multiplier of the stick constraint, recomputed here from each recorded state by solving the
     constrained equations again (Problem.evaluate in the stick mode), 1e-9 relative (round-off).  A driver of
     inertia J = 0.3 moving A sin(w t) through a spring k to a body with friction: its reaction output equals
     J a_d(t) - k (x_b - x_d) from its law and the recorded positions, 1e-9."""
-    name = "loads-multipliers-and-reactions"
+    name = "loads-lumped-multipliers-and-reactions"
     st = Study.parse(example_doc("discrete_seed000_stick_slip.toml"))
     res = st.simulate()
-    o = st.simulation_outputs(res)
+    o = st.outputs(res)
     p = st.problem_spec().problem()
     ev = [(e.t, e.kind) for e in res.events if e.element == "bit" and e.kind in ("stick", "slip", "reversal")]
     mask = np.zeros(res.t.size, dtype=bool)
@@ -129,7 +129,7 @@ def multipliers_and_reactions():
     s2 = Study.parse(doc)
     r2 = s2.simulate()
     R = J * (-A * w * w * np.sin(w * r2.t)) - k * (r2.x[r2.names.index("slider")] - r2.x[r2.names.index("crank")])
-    Ro = s2.simulation_outputs(r2).column("crank.reaction")
+    Ro = s2.outputs(r2).column("crank.reaction")
     out.append(check(name, "J a_d - k (x_b - x_d)", "max |R_out - R| / max |R|", 0.0,
                      float(np.max(np.abs(Ro - R)) / np.max(np.abs(R))), 1e-9, scale=1.0))
     return out

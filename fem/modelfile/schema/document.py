@@ -142,6 +142,9 @@ def _frequencies_rule(doc) -> None:
 class FEFile(ModelFileBase, FETables, LinearTables, ExcitationTables):
     """An FE model file: a shaft, rod or beam with modal or harmonic analysis."""
 
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations and every support's reaction)."""
+
     @model_validator(mode="after")
     def _rules(self):
         _frequencies_rule(self)
@@ -210,6 +213,8 @@ class RotorFile(ModelFileBase):
     """[run_up]: speed ramp, method and reduction of the transient run (drivefem simulate)."""
     rub: _array(RubTable)
     """[[rub]]: radial clearances with contact and friction: rotor-stator rub, bearing clearance (drivefem simulate)."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations, every bearing's reaction)."""
 
 
 KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
@@ -254,7 +259,7 @@ HINTS = {
                   for k in ("load", "base_motion", "response")}},
     "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
     "rotor": {**{k: "not a table of rotor files (a [rotor] file has [rotor], [analysis], [campbell], "
-                 "[unbalance_response], [[unbalance]], [run_up], [[rub]] and title)" for k in OTHER_KIND},
+                 "[unbalance_response], [[unbalance]], [run_up], [[rub]], [[output]] and title)" for k in OTHER_KIND},
               "simulation": "in a rotor file the transient run is [run_up] (with [[rub]] clearances)",
               "material": "in a rotor file the shaft material is [rotor.material]",
               "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",

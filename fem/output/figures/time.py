@@ -6,51 +6,7 @@ import pathlib
 
 import numpy as np
 
-
-MARKS = {"stick": "v", "slip": "^", "reversal": "x", "impact": "o", "contact_open": "s", "contact_close": "D"}
-
-
-def _axis_label(channels) -> str:
-    """'quantity [unit]' of the channels on one axis (their common words, else 'values')."""
-    qs = sorted({c.quantity for c in channels})
-    us = sorted({c.unit for c in channels})
-    return f"{' / '.join(qs)} [{', '.join(us)}]"
-
-
-def plot_loads(outputs, path, title: str = "", events=None, max_lines: int = 8) -> pathlib.Path:
-    """``path``: the named outputs over time, motions (deflection, twist, slip velocity, ...) on the upper
-    axis and forces (element forces, gear forces, reactions) on the lower one, events marked; legends with
-    the names of the model file."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    t = outputs.axis_values
-    groups: dict = {}                       # one panel per unit (forces last), at most max_lines lines each
-    for k, c in sorted(enumerate(outputs.channels), key=lambda kc: kc[1].is_force):
-        groups.setdefault(c.unit, []).append(k)
-    panels = [ks[:max_lines] for ks in groups.values()][:6]
-    fig, axes = plt.subplots(len(panels) or 1, 1, figsize=(8, 2.8 * max(len(panels), 1) + 0.6), sharex=True,
-                             squeeze=False)
-    for ax, ks in zip(axes[:, 0], panels):
-        for k in ks:
-            ax.plot(t, outputs.values[k], lw=1, label=outputs.channels[k].name)
-        ax.set_ylabel(_axis_label([outputs.channels[k] for k in ks]), fontsize=8)
-        ax.legend(fontsize=7, loc="best")
-    if events is not None:
-        ax = axes[-1, 0]
-        for kind, mk in MARKS.items():
-            tt = np.array([e.t for e in events if e.kind == kind])
-            if tt.size and tt.size < 2000:
-                ax.plot(tt, 0 * tt, mk, ms=4, ls="none", label=kind)
-        ax.legend(fontsize=7, loc="best", ncol=3)
-    axes[-1, 0].set_xlabel("time t [s]")
-    axes[0, 0].set_title(title or "element loads", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return pathlib.Path(path)
+from .loads import MARKS, plot_loads
 
 
 def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: str = "") -> list[pathlib.Path]:
