@@ -48,15 +48,18 @@ BUDGET_S = 600.0
 SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("event_solver.py", [], [], True),
     ("stick_slip.py", [], [], True),
+    ("cli_simulate.py", [], [], True),
     ("hybrid.py", [], [], True),
     ("drives.py", [], [], True),
     ("modal_scaling.py", ["--quick"], [], True),
     ("render.py", [], [], True),
     ("sweep.py", ["--frequencies", "10", "--warm-cluster"], [], True),
     ("afc.py", [], [], True),
+    ("loads.py", [], [], True),
     ("afc_hybrid.py", [], [], False),
     ("solid.py", ["--paths", "release", "auto"], [], False),
     ("rotor.py", ["--quick"], [], False),
+    ("pyharm.py", [], [], False),          # needs benchmarks/pyharm_env.sh (pyHarm in its own env)
 ]
 
 

@@ -298,11 +298,11 @@ def _fmt(ts):
     return f"{med:9.4g} [{lo:.3g}-{hi:.3g}]"
 
 
-def run_ross(python: str, spec: dict, workdir: Path, on_sync=None) -> dict:
+def run_ross(python: str, spec: dict, workdir: Path, on_sync=None, script_text: str = ROSS_SCRIPT) -> dict:
     """Run the ROSS side; at each of its ``SYNC tag i`` lines (before ROSS's timed run i of an
     analysis) call ``on_sync(tag, i)`` -- drivefem's run i of the same analysis -- then let ROSS go on."""
     script = workdir / "ross_side.py"
-    script.write_text(ROSS_SCRIPT)
+    script.write_text(script_text)
     spec_path, out_path = workdir / "spec.json", workdir / "ross.json"
     spec_path.write_text(json.dumps(spec))
     env = dict(os.environ, PYTHONWARNINGS="ignore", MPLBACKEND="Agg")
@@ -321,6 +321,111 @@ def run_ross(python: str, spec: dict, workdir: Path, on_sync=None) -> dict:
             err.seek(0)
             raise SystemExit(f"ROSS side failed:\n{err.read()[-3000:]}")
     return json.loads(out_path.read_text())
+
+
+COMPRESSOR_SCRIPT = textwrap.dedent('''
+    import gc, json, sys, time, warnings
+    warnings.filterwarnings("ignore")
+    import numpy as np
+    import ross as rs
+    spec = json.loads(open(sys.argv[1]).read())
+    rotor = rs.Rotor.load(spec["file"])
+
+    def sync(tag, i):
+        print(f"SYNC {tag} {i}", flush=True)
+        if sys.stdin.readline().strip() != "GO":
+            raise SystemExit("the benchmark's driver went away")
+
+    def clear():
+        for name in ("run_modal", "_run_freq_response"):
+            try:
+                getattr(rotor, name).cache_clear()
+            except AttributeError:
+                pass
+
+    rotor.run_modal(spec["speed"], num_modes=2 * spec["n_modes"])        # numba JIT, imports
+    out = {"ross_version": rs.__version__, "modal_s": [], "campbell_s": [], "modal_cpu": [], "campbell_cpu": []}
+    for i in range(spec["repeats"]):
+        f = 1.0 + 1e-9 * (i + 1)
+        clear(); gc.collect(); sync("modal", i)
+        t0, c0 = time.perf_counter(), time.process_time()
+        m = rotor.run_modal(spec["speed"] * f, num_modes=2 * spec["n_modes"])
+        out["modal_s"].append(time.perf_counter() - t0)
+        out["modal_cpu"].append(time.process_time() - c0)
+    out["wd"] = np.asarray(m.wd).tolist()
+    out["log_dec"] = np.asarray(m.log_dec).tolist()
+    for i in range(spec["campbell_repeats"]):
+        f = 1.0 + 1e-9 * (i + 1)
+        clear(); gc.collect(); sync("campbell", i)
+        t0, c0 = time.perf_counter(), time.process_time()
+        c = rotor.run_campbell(np.asarray(spec["campbell"]) * f, frequencies=spec["n_modes"])
+        out["campbell_s"].append(time.perf_counter() - t0)
+        out["campbell_cpu"].append(time.process_time() - c0)
+    out["campbell_wd"] = np.asarray(c.wd).tolist()
+    json.dump(out, open(sys.argv[2], "w"))
+''')
+COMPRESSOR_FILE = ROOT / "examples" / "ross_compressor.toml"
+COMPRESSOR_ROSS_FILE = ROOT / "validation" / "data" / "ross" / "compressor_example.toml"
+COMPRESSOR_CAMPBELL = np.linspace(0.0, 11000 * np.pi / 30, 21)
+
+
+def compressor(python: str, repeats: int, workdir: Path, report: dict) -> list:
+    """ROSS's compressor example, imported (examples/ross_compressor.toml), against ROSS on its own file:
+    modal at 4000 rev/min and a 21-speed Campbell diagram (0-11000 rev/min; tables extrapolated below
+    4000 rev/min on both sides), paired runs as for the Friswell rotors."""
+    import warnings
+
+    from fem.modelfile.build.rotor import rotor_model
+    from fem.rotor import assemble_rotor, campbell, rotor_modes
+    from fem.study import Study
+
+    warnings.simplefilter("ignore")                     # the declared extrapolation warns once per bearing
+    rs_ = assemble_rotor(rotor_model(Study.load(COMPRESSOR_FILE).doc))
+    n_modes = 16                                        # the 8 ROSS reports plus overdamped and rigid ones
+    rotor_modes(rs_, SPEED, n_modes)
+    times = {"modal": [], "campbell": [], "modal_cpu": [], "campbell_cpu": []}
+
+    def ours(tag, i):
+        f = 1.0 + 1e-9 * (i + 1)
+        time.sleep(0.3)
+        rotor_modes(rs_, 0.5 * SPEED, n_modes)          # untimed, as in PairedRuns
+        c0 = time.process_time()
+        if tag == "modal":
+            times["modal"].append(_once(lambda: rotor_modes(rs_, SPEED * f, n_modes)))
+        else:
+            times["campbell"].append(_once(lambda: campbell(rs_, COMPRESSOR_CAMPBELL * f, n_modes, critical=False)))
+        times[f"{tag}_cpu"].append(time.process_time() - c0)
+
+    spec = {"file": str(COMPRESSOR_ROSS_FILE), "speed": SPEED, "n_modes": 8, "repeats": repeats,
+            "campbell_repeats": max(2, repeats // 2), "campbell": COMPRESSOR_CAMPBELL.tolist()}
+    ross = run_ross(python, spec, workdir, ours, COMPRESSOR_SCRIPT)
+    m = rotor_modes(rs_, SPEED, 24)                     # enough to hold ROSS's 8 oscillating modes
+    osc = m.eigenvalues[m.eigenvalues.imag > 1e-9]
+    wd = np.asarray(ross["wd"])
+    d_wd = float(max(np.min(np.abs(osc.imag - w)) / w for w in wd if w > 1))
+    lines = [f"  ROSS compressor example (91 shaft elements, 36 layered stations, 14 bearing/seal tables), "
+             f"{rs_.n_dofs} DOFs; damped frequencies at 4000 rev/min vs ROSS's (both with ROSS's smoothing-spline "
+             f"tables): {d_wd:.1e}"]
+    for label, tag in (("compressor modal", "modal"), ("compressor Campbell 21", "campbell")):
+        tr, to = ross[f"{tag}_s"], times[tag]
+        ratio = _stats(tr)[0] / _stats(to)[0]
+        # CPU time of each process (ROSS's includes its BLAS threads): insensitive to time slicing
+        ratio_cpu = _stats(ross[f"{tag}_cpu"])[0] / _stats(times[f"{tag}_cpu"])[0]
+        pairs = np.asarray(tr) / np.asarray(to) if len(tr) == len(to) else None
+        span = f"  pairs {pairs.min():.0f}-{pairs.max():.0f}x" if pairs is not None else ""
+        lines.append(f"{label:22s} {'':>4s} {_fmt(tr):>24s} {_fmt(to):>26s} {ratio:8.0f}x{span}; CPU time "
+                     f"{_fmt(ross[f'{tag}_cpu'])} / {_fmt(times[f'{tag}_cpu'])}: {ratio_cpu:.0f}x")
+        report["timing"].append({"analysis": label, "elements": 55, "ross_s": tr, "drivefem_s": to, "ratio": ratio})
+        spread = {"package_s": [min(to), max(to)], "baseline_s": [min(tr), max(tr)]}
+        if pairs is not None:
+            spread["pair_ratio"] = [float(pairs.min()), float(pairs.max())]
+        what = "modal at 4000 rev/min" if "modal" in label else "Campbell diagram, 21 speeds 0-11000 rev/min"
+        report.setdefault("records", []).append(record(
+            "rotor.py", f"{what}, ROSS's compressor example imported (drivefem convert)", "drivefem",
+            f"ROSS {ross['ross_version']}", ratio, (">=", 100.0), ratio_cpu=ratio_cpu,
+            accuracy="max rel. difference of the damped frequencies vs ROSS (both with ROSS's smoothing-spline tables)",
+            accuracy_package=d_wd, runs=len(to), spread=spread))
+    return lines
 
 
 def cold_start(python: str, code: str, runs: int, cwd) -> list:
@@ -349,6 +454,8 @@ def main(argv=None) -> int:
     ap.add_argument("--cold-runs", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="6 and 99 elements, 3 repeats, 2 cold runs")
     ap.add_argument("--json", help="write the measurements to this file")
+    ap.add_argument("--no-compressor", action="store_true", help="skip ROSS's compressor example (imported)")
+    ap.add_argument("--compressor-only", action="store_true", help="only ROSS's compressor example (imported)")
     args = ap.parse_args(argv)
     if args.quick:
         args.sizes, args.repeats, args.cold_runs = [6, 99], 3, 2
@@ -356,6 +463,8 @@ def main(argv=None) -> int:
         print(f"ROSS environment not found at {args.ross}: create it with `bash benchmarks/ross_env.sh` "
               "(or pass --ross PYTHON)")
         return 2
+    if args.compressor_only:
+        args.sizes = []
     for n in args.sizes:
         if n % 3:
             raise SystemExit(f"--sizes: {n} elements put no nodes at the discs (0.5 and 1.0 m): use multiples of 3")
@@ -393,6 +502,13 @@ def main(argv=None) -> int:
           "in the call); 'repeated': another speed on the same rotor (ROSS: run_modal on its Rotor, caches cleared)")
     print(f"{'analysis':22s} {'el.':>4s} {'ROSS':>24s} {'drivefem':>26s} {'ratio':>8s}")
     print("\n".join(time_lines))
+    if not args.no_compressor:
+        print("\nROSS's compressor example, imported: times in seconds, median [min-max]; paired runs")
+        print("\n".join(compressor(args.ross, args.repeats, tmp, report)))
+    if not args.sizes:
+        if args.json:
+            Path(args.json).write_text(json.dumps(report, indent=1))
+        return finish(report.get("records", []))
     print("\nCold start: a fresh process that imports, builds the largest rotor and runs one modal (alternating)")
     n_cold = max(args.sizes)
     ours_cold, ross_cold = [], []

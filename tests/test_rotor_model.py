@@ -86,10 +86,11 @@ def test_dof_lookup_and_system_at():
 
 # ---------------------------------------------------------------- bad input
 @pytest.mark.parametrize("kw, key", [
-    ({"kyy": -1e6, "kzz": 1e6}, "kyy"),
+    ({"kyy": 1e6, "kzz": 1e6, "cyy": -5.0}, "cyy"),
     ({"kyy": 1e6, "kzz": 1e6, "czz": -5.0}, "czz"),
+    ({"kyy": 1e6, "kzz": 1e6, "cyy": 1.0, "czz": 1.0, "cyz": 3.0, "czy": 3.0}, "cyz"),   # indefinite sym. part
     ({"kyy": 0.0, "kzz": 0.0}, "kyy"),
-    ({"kyy": [1e6, -1.0], "kzz": 1e6, "speeds": [0.0, 100.0]}, "kyy"),
+    ({"cyy": [1e3, -1.0], "czz": 1e3, "speeds": [0.0, 100.0]}, "cyy"),
     ({"kyy": [1e6, 2e6, 3e6], "kzz": 1e6, "speeds": [0.0, 100.0]}, "kyy"),
     ({"kyy": [1e6, 2e6], "kzz": 1e6}, "kyy"),
     ({"kyy": [1e6, 2e6], "kzz": 1e6, "speeds": [100.0, 0.0]}, "speeds"),
@@ -102,11 +103,22 @@ def test_bad_bearing_coefficients(kw, key):
 
 
 def test_cross_coupled_coefficients_may_be_negative():
-    _rotor(bearings=[Bearing(0.0, kyy=1e6, kzz=1e6, kyz=-3e5, kzy=3e5, cyz=-10.0), Bearing(1.2, kyy=1e6, kzz=1e6)])
+    _rotor(bearings=[Bearing(0.0, kyy=1e6, kzz=1e6, kyz=-3e5, kzy=3e5, cyz=-10.0, czy=10.0),
+                     Bearing(1.2, kyy=1e6, kzz=1e6)])
+    with pytest.raises(ModelError, match="positive semidefinite") as err:      # cyz alone: d'^T C d' < 0 possible
+        _rotor(bearings=[Bearing(0.0, kyy=1e6, kzz=1e6, cyz=-10.0), Bearing(1.2, kyy=1e6, kzz=1e6)])
+    assert err.value.key == "cyz"
+
+
+def test_stiffness_of_any_sign_and_skew_damping():
+    """Seals: negative direct stiffness (also in a table); a skew cross-coupled damping does no work."""
+    _rotor(bearings=[Bearing(0.0, kyy=1e6, kzz=1e6), Bearing(1.2, kyy=1e6, kzz=1e6),
+                     Bearing(0.6, kyy=[-2e4, 3e4], kzz=-2e4, cyy=1.0, czz=1.0, cyz=50.0, czy=-50.0,
+                             speeds=[0.0, 100.0])])
 
 
 def test_speed_table_outside_its_grid_is_an_error():
-    b = Bearing(0.0, kyy=[1e6, 2e6], kzz=1e6, czy=[0.0, 50.0], speeds=[100.0, 400.0])
+    b = Bearing(0.0, kyy=[1e6, 2e6], kzz=1e6, czy=[0.0, 50.0], cyz=[0.0, -50.0], speeds=[100.0, 400.0])
     rs = assemble_rotor(_rotor(bearings=[b, Bearing(1.2, kyy=1e6, kzz=1e6)]))
     rs.system_at(250.0)
     for speed in (50.0, 500.0):

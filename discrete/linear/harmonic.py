@@ -79,6 +79,7 @@ class HarmonicResult:
     damping: str
     relative: np.ndarray | None = None   # relative response (output minus base motion) for kinematic excitation
     warnings: list[str] = field(default_factory=list)
+    full: np.ndarray | None = field(default=None, repr=False)   # (n_freq, n_dofs): every DOF (section loads)
     error_estimate: np.ndarray | None = None   # (n_freq,) relative error of the response vector (module notes)
 
     @property
@@ -124,7 +125,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     ``force``: full-length complex load vector; ``force_omega2``: loads proportional to omega^2 (an
     unbalance m e: the load at omega is omega^2 force_omega2), added to ``force`` frequency by frequency;
     ``base_motion``: {constrained DOF index: complex amplitude}.  ``method``: ``direct`` or ``modal``
-    (``n_modes`` lowest modes).
+    (``n_modes`` lowest modes).  ``result.full`` keeps the amplitudes of every DOF.
     """
     system = as_linear_system(system, "harmonic_response")
     damping = Damping() if damping is None else damping
@@ -184,7 +185,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     if system.H.nnz and damping.type != "none":
         desc += " + hysteretic (psi of segments/springs)"
     res = HarmonicResult(omega_rad_s=omegas, response=Q[:, outputs], outputs=[system.label(i) for i in outputs],
-                         method=name, damping=desc, error_estimate=err)
+                         method=name, damping=desc, full=Q, error_estimate=err)
     res.warnings.extend(reliability_warnings(omegas, err))
     if np.any(Ub):
         ub_full = np.zeros(n, dtype=complex)

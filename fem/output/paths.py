@@ -2,7 +2,7 @@
 unwritable file, and never writes two outputs into one file.
 
 :func:`check_outputs` is the one check every command runs on its output options (``--json``, ``--csv``,
-``--plot``, ``--png``, ``--vtu``, ``--out``, ``--report``): each path is non-empty, its names fit the
+``--plot``, ``--png``, ``--vtu``, ``--h5``, ``--html``, ``--out``, ``--report``): each path is non-empty, its names fit the
 file system (``NAME_MAX`` per component, counting the ``.tmp`` of the atomic write, ``PATH_MAX`` in
 all), a file ends in a suffix its writer produces (:data:`SUFFIXES`), a file is not a directory, a
 device or a FIFO (files are written by replacing them), a directory is not a file, the location is
@@ -22,9 +22,13 @@ SUFFIXES = {
     "csv": (".csv", ".txt"),
     "figure": (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif", ".tiff", ".webp"),
     "mesh": (".vtu", ".xdmf"),
+    "h5": (".h5", ".hdf5"),
+    "html": (".html", ".htm"),
+    "toml": (".toml",),
 }
-#: Kinds of output: a file kind of :data:`SUFFIXES`, or a directory (created if missing).
-KINDS = tuple(SUFFIXES) + ("dir",)
+#: Kinds of output: a file kind of :data:`SUFFIXES`, a directory (created if missing), or ``figure|dir``:
+#: a figure file when the path has a suffix, else a directory of figures (rotor ``forced --plot``).
+KINDS = tuple(SUFFIXES) + ("dir", "figure|dir")
 _TMP = ".tmp"          # files are written as NAME.tmp, then renamed (fem.output.jsonio.write_json)
 WHERE = "command line"
 
@@ -127,6 +131,8 @@ def check_outputs(values: dict[str, tuple[object, str]]) -> dict[str, Path]:
             continue
         if kind not in KINDS:
             raise ValueError(f"unknown output kind {kind!r}")
+        if kind == "figure|dir":
+            kind = "figure" if Path(str(value)).suffix else "dir"
         p = check_output_path(value, option, directory=kind == "dir", kind=None if kind == "dir" else kind)
         ident = _identity(p)
         if ident in seen:

@@ -19,37 +19,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.interpolate import PchipInterpolator
 
 from discrete.errors import ModelError
 from discrete.linear_system import LinearSystem
 
 from . import elements as el
-from .model import BEARING_COEFFICIENTS, Rotor
-
-
-@dataclass
-class _Table:
-    """A speed-dependent bearing: its coefficient interpolants and where it lands in the pattern."""
-
-    index: int                      # 1-based bearing number (for messages)
-    grid: np.ndarray
-    values: np.ndarray              # (8, n_grid) in BEARING_COEFFICIENTS order
-    interpolation: str
-
-    def at(self, speeds: np.ndarray) -> np.ndarray:
-        """(n_speeds, 8) coefficients; a speed outside the table is an error (no extrapolation)."""
-        s = np.atleast_1d(np.asarray(speeds, dtype=float))
-        lo, hi = self.grid[0], self.grid[-1]
-        bad = s[(s < lo * (1 - 1e-12)) | (s > hi * (1 + 1e-12))]
-        if bad.size:
-            raise ModelError(f"[[rotor.bearing]] #{self.index}", "speed", float(bad[0]),
-                             f"a speed inside the bearing table's range [{lo:g}, {hi:g}] rad/s "
-                             "(the table is not extrapolated: extend its `speeds`)")
-        s = np.clip(s, lo, hi)
-        if self.interpolation == "pchip":
-            return PchipInterpolator(self.grid, self.values, axis=1)(s).T
-        return np.stack([np.interp(s, self.grid, v) for v in self.values], axis=1)
+from .model import BEARING_COEFFICIENTS, Rotor, damping_not_dissipative
+from .tables import SpeedTable
 
 
 @dataclass
@@ -81,6 +57,7 @@ class RotorSystem:
     _Bc: sp.csr_matrix | None = None
     _pattern: sp.csr_matrix | None = None
     _workspace: object = None                # the modal solver's reusable structures (fem.rotor.modal)
+    _pattern_data: dict = field(default_factory=dict, repr=False)   # id -> (K0 or C0, its data on the pattern)
 
     # ------------------------------------------------------------------ sizes and lookup
     @property
@@ -120,16 +97,26 @@ class RotorSystem:
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         if not self.tables:
             return np.zeros((s.size, 0))
-        return np.hstack([t.at(s) for t in self.tables])
+        c = np.hstack([t.at(s, check=False) for t in self.tables])
+        # the damping check of extrapolated and smoothing-spline values, all tables at once; the
+        # offending table's own check names it
+        checked = [j for j, t in enumerate(self.tables) if t.needs_damping_check(s)]
+        if checked:
+            vals = c.reshape(s.size, len(self.tables), 8)[:, checked, :].reshape(-1, 8).T
+            if damping_not_dissipative(vals) is not None:
+                for j in checked:
+                    self.tables[j].at(s)
+        return c
 
-    def stiffness_data(self, speeds) -> np.ndarray:
-        """(n_speeds, nnz) data of K(speed) on the common pattern."""
-        c = self.coefficients(speeds)
+    def stiffness_data(self, speeds, coefficients: np.ndarray | None = None) -> np.ndarray:
+        """(n_speeds, nnz) data of K(speed) on the common pattern (``coefficients``: those of
+        :meth:`coefficients` at ``speeds`` when the caller has them already)."""
+        c = self.coefficients(speeds) if coefficients is None else coefficients
         base = self._on_pattern(self.K0)
         return base[None, :] + (self._Bk @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
 
-    def damping_data(self, speeds) -> np.ndarray:
-        c = self.coefficients(speeds)
+    def damping_data(self, speeds, coefficients: np.ndarray | None = None) -> np.ndarray:
+        c = self.coefficients(speeds) if coefficients is None else coefficients
         base = self._on_pattern(self.C0)
         return base[None, :] + (self._Bc @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
 
@@ -139,7 +126,16 @@ class RotorSystem:
         return self._pattern
 
     def _on_pattern(self, A: sp.csr_matrix) -> np.ndarray:
-        return _data_on(self._pattern, A)
+        """A's data on the common pattern; cached for the constant matrices (K0, C0: read at every
+        speed), keyed by the matrix object."""
+        hit = self._pattern_data.get(id(A))
+        if hit is not None and hit[0] is A:
+            return hit[1]
+        data = _data_on(self._pattern, A)
+        if A is self.K0 or A is self.C0:
+            data.flags.writeable = False
+            self._pattern_data[id(A)] = (A, data)        # holding A keeps its id unique
+        return data
 
     def _from_data(self, data: np.ndarray) -> sp.csr_matrix:
         P = self._pattern
@@ -150,6 +146,13 @@ class RotorSystem:
 
     def damping(self, speed: float = 0.0) -> sp.csr_matrix:
         return self.C0 if not self.tables else self._from_data(self.damping_data(speed)[0])
+
+    def stiffness_and_damping(self, speed: float = 0.0) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """K(speed) and C(speed), the bearing tables evaluated once for both."""
+        if not self.tables:
+            return self.K0, self.C0
+        c = self.coefficients(speed)
+        return (self._from_data(self.stiffness_data(speed, c)[0]), self._from_data(self.damping_data(speed, c)[0]))
 
     def system_at(self, speed: float = 0.0) -> LinearSystem:
         """The linear system M q'' + (C + speed G) q' + K q = f at ``speed`` (rad/s): K and C
@@ -211,38 +214,79 @@ def _data_on(P: sp.csr_matrix, A: sp.spmatrix) -> np.ndarray:
     return out
 
 
+_COLUMNS = ("L", "E", "G", "rho", "kappa", "d0", "d1", "di0", "di1", "mx", "seg")
+
+
+def _section_columns(cols: dict, length: float, n: int, d0: float, d1: float, di0: float, di1: float, mat,
+                     kappa: float | None) -> None:
+    """Append one section's per-element columns (n equal elements over ``length``) to ``cols``."""
+    t = np.arange(n + 1) / n
+    d = d0 + (d1 - d0) * t
+    di = di0 + (di1 - di0) * t
+    nu = mat.E / (2.0 * mat.G) - 1.0
+    if kappa is not None:
+        kap = np.full(n, float(kappa))
+    else:   # Cowper for the hollow circle with the element's mean diameter ratio
+        m = 0.5 * (di[:-1] + di[1:]) / (0.5 * (d[:-1] + d[1:]))
+        m2 = m * m
+        kap = 6 * (1 + nu) * (1 + m2) ** 2 / ((7 + 6 * nu) * (1 + m2) ** 2 + (20 + 12 * nu) * m2)
+    cols["L"].append(np.full(n, length / n))
+    cols["E"].append(np.full(n, mat.E))
+    cols["G"].append(np.full(n, mat.G))
+    cols["rho"].append(np.full(n, mat.rho))
+    cols["kappa"].append(kap)
+    cols["d0"].append(d[:-1])
+    cols["d1"].append(d[1:])
+    cols["di0"].append(di[:-1])
+    cols["di1"].append(di[1:])
+
+
 def _segment_arrays(rotor: Rotor):
-    """Per-element arrays: length, E, G, rho, kappa, diameters at both ends, added mass."""
-    cols = {k: [] for k in ("L", "E", "G", "rho", "kappa", "d0", "d1", "di0", "di1", "mx", "seg")}
+    """Per-element arrays of the segments' own sections: length, E, G, rho, kappa, diameters at
+    both ends, added mass, segment number."""
+    cols = {k: [] for k in _COLUMNS}
     for i, s in enumerate(rotor.segments):
-        n = s.elements
-        t = np.arange(n + 1) / n
-        d = s.d + (s.outer_end - s.d) * t
-        di = s.di + (s.bore_end - s.di) * t
-        mat = s.material
-        nu = mat.E / (2.0 * mat.G) - 1.0
-        if s.shear_coefficient is not None:
-            kap = np.full(n, float(s.shear_coefficient))
-        else:   # Cowper for the hollow circle with the element's mean diameter ratio
-            m = 0.5 * (di[:-1] + di[1:]) / (0.5 * (d[:-1] + d[1:]))
-            m2 = m * m
-            kap = 6 * (1 + nu) * (1 + m2) ** 2 / ((7 + 6 * nu) * (1 + m2) ** 2 + (20 + 12 * nu) * m2)
-        cols["L"].append(np.full(n, s.length / n))
-        cols["E"].append(np.full(n, mat.E))
-        cols["G"].append(np.full(n, mat.G))
-        cols["rho"].append(np.full(n, mat.rho))
-        cols["kappa"].append(kap)
-        cols["d0"].append(d[:-1])
-        cols["d1"].append(d[1:])
-        cols["di0"].append(di[:-1])
-        cols["di1"].append(di[1:])
-        cols["mx"].append(np.full(n, s.added_mass_per_length))
-        cols["seg"].append(np.full(n, i))
+        _section_columns(cols, s.length, s.elements, s.d, s.outer_end, s.di, s.bore_end, s.material,
+                         s.shear_coefficient)
+        cols["mx"].append(np.full(s.elements, s.added_mass_per_length))
+        cols["seg"].append(np.full(s.elements, i))
     return {k: np.concatenate(v) for k, v in cols.items()}
 
 
-def assemble_rotor(rotor: Rotor) -> RotorSystem:
-    """Assemble ``rotor`` (see the module notes for the DOF numbering and the pattern)."""
+def _layer_arrays(rotor: Rotor):
+    """Per-element arrays of the segments' further layers (None without layers), with ``elem``
+    (the global element each layer element lies on) and ``structural`` (False: mass only)."""
+    cols = {k: [] for k in _COLUMNS + ("elem", "structural")}
+    first = np.concatenate(([0], np.cumsum([s.elements for s in rotor.segments])))
+    for i, s in enumerate(rotor.segments):
+        for lay in s.layers:
+            n = s.elements
+            _section_columns(cols, s.length, n, lay.d, lay.outer_end, lay.di, lay.bore_end, lay.material,
+                             lay.shear_coefficient)
+            cols["mx"].append(np.zeros(n))
+            cols["seg"].append(np.full(n, i))
+            cols["elem"].append(first[i] + np.arange(n))
+            cols["structural"].append(np.full(n, not lay.mass_only))
+    if not cols["L"]:
+        return None
+    return {k: np.concatenate(v) for k, v in cols.items()}
+
+
+def assemble_rotor(rotor: Rotor, *, nonlinear_bearings: str = "linearised") -> RotorSystem:
+    """Assemble ``rotor`` (see the module notes for the DOF numbering and the pattern).
+
+    Bearings computed from their geometry (``nonlinear`` True: :mod:`fem.rotor.bearings`) enter
+    with their linearised coefficient tables (``nonlinear_bearings = "linearised"``, every linear
+    analysis) or not at all (``"omitted"``: a run-up applies their nonlinear laws instead); a
+    bearing that draws its static load from the rotor's weight gets it first."""
+    if nonlinear_bearings not in ("linearised", "omitted"):
+        raise ValueError(f"nonlinear_bearings = {nonlinear_bearings!r}: 'linearised' or 'omitted'")
+    if nonlinear_bearings == "linearised" and any(getattr(b, "needs_weight_load", False) for b in rotor.bearings):
+        from .bearings.static_load import weight_reactions
+
+        for b, load in zip(rotor.bearings, weight_reactions(rotor)):
+            if getattr(b, "needs_weight_load", False):
+                b.set_weight_load(load)
     fields = rotor.fields
     nf = len(fields)
     # ---------------------------------------------------------------- nodes (couplings cut the shaft)
@@ -311,6 +355,40 @@ def assemble_rotor(rotor: Rotor) -> RotorSystem:
             mvals.append(Me.ravel())
             gvals.append(np.zeros(Ke.size))
             cvals.append(np.zeros(Ke.size))
+    lay = _layer_arrays(rotor)
+    if lay is not None:
+        # each layer: a Timoshenko element of its own on the same nodes (own Phi and interpolation),
+        # its matrices added to the element's (ROSS's convention for shaft elements sharing a node);
+        # mass-only layers add M and G (translation, rotary and polar inertia) and no K
+        e = lay["elem"]
+        st = lay["structural"].astype(float)
+        Kq, MTq, MRq, Pq, phq = el.plane_matrices(lay["L"], lay["E"], lay["G"], lay["rho"], lay["kappa"], lay["d0"],
+                                                  lay["d1"], lay["di0"], lay["di1"], lay["mx"])
+        Kq *= st[:, None, None]
+        Klq, Mlq, Glq = el.lateral_matrices(Kq, MTq, MRq, Pq)
+        rows.append(np.repeat(edofs[e], 8, axis=1).ravel())
+        cols.append(np.tile(edofs[e], (1, 8)).ravel())
+        kvals.append(Klq.ravel())
+        mvals.append(Mlq.ravel())
+        gvals.append(Glq.ravel())
+        cvals.append(np.zeros(Klq.size))
+        Ndq = el.shape_functions(lay["L"], phq)[0]
+        A_q, _, Ip_q = el.section_at(lay["d0"], lay["d1"], lay["di0"], lay["di1"], el.XI)
+        mass_q = lay["rho"][:, None] * A_q
+        wq = el.WG[None, :] * lay["L"][:, None]
+        np.add.at(element_load, e, np.einsum("eq,eqi->ei", mass_q * wq, Ndq))
+        np.add.at(axial_load, e, np.einsum("eq,qi->ei", mass_q * wq, N_lin))
+        if rotor.dofs == "full":
+            Kaq, Maq = el.rod_matrices(lay["L"], (st * lay["E"])[:, None] * A_q, mass_q)
+            Ktq, Mtq = el.rod_matrices(lay["L"], (st * lay["G"])[:, None] * Ip_q, lay["rho"][:, None] * Ip_q)
+            for Ke, Me, f in ((Kaq, Maq, "u"), (Ktq, Mtq, "theta_x")):
+                e2 = np.stack([nd[f][n0[e]], nd[f][n1[e]]], axis=1)
+                rows.append(np.repeat(e2, 2, axis=1).ravel())
+                cols.append(np.tile(e2, (1, 2)).ravel())
+                kvals.append(Ke.ravel())
+                mvals.append(Me.ravel())
+                gvals.append(np.zeros(Ke.size))
+                cvals.append(np.zeros(Ke.size))
 
     # ---------------------------------------------------------------- lumped items
     extra = {"K": [], "C": [], "M": [], "G": []}          # (i, j, value)
@@ -372,6 +450,8 @@ def assemble_rotor(rotor: Rotor) -> RotorSystem:
     table_entries = []                # (table number, coefficient slot, i, j, sign)
     tables = []
     for b_no, b in enumerate(rotor.bearings, 1):
+        if nonlinear_bearings == "omitted" and getattr(b, "nonlinear", False):
+            continue
         node = node_at(b.x)
         shaft = (nd["v"][node], nd["w"][node])
         ped = ped_dofs[b.pedestal] if b.pedestal is not None else None
@@ -386,8 +466,13 @@ def assemble_rotor(rotor: Rotor) -> RotorSystem:
         tab = b.table()
         if b.speed_dependent:
             t_no = len(tables)
-            tables.append(_Table(index=b_no, grid=b.speed_grid,
-                                 values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]), interpolation=b.interpolation))
+            kind = getattr(b, "kind", "bearing")
+            number = b_no if kind == "bearing" else \
+                sum(getattr(c, "kind", "bearing") == kind for c in rotor.bearings[:b_no])
+            tables.append(SpeedTable(index=number, grid=b.speed_grid,
+                                     values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]),
+                                     interpolation=b.interpolation, extrapolate=b.extrapolate, name=b.name, x=b.x,
+                                     table=f"rotor.{kind}"))
         for slot, key in enumerate(BEARING_COEFFICIENTS):
             r_, c_ = coeff_slots[key]
             for (i, si) in incid[r_]:

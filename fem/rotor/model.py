@@ -28,7 +28,14 @@ LATERAL = ("v", "w", "theta_y", "theta_z")
 #: the eight linear bearing coefficients: force on the shaft f = -K d - C d' with d = (v, w) (relative
 #: to the pedestal when there is one), K = [[kyy, kyz], [kzy, kzz]], C = [[cyy, cyz], [czy, czz]]
 BEARING_COEFFICIENTS = ("kyy", "kyz", "kzy", "kzz", "cyy", "cyz", "czy", "czz")
-INTERPOLATIONS = ("linear", "pchip")
+#: linear; pchip (shape-preserving cubic, Fritsch-Carlson); spline (cubic spline through the points,
+#: not-a-knot ends); smoothing-spline (ROSS's convention: scipy's UnivariateSpline, a cubic smoothing
+#: spline with s = number of points -- not an interpolant, it misses the table's points)
+INTERPOLATIONS = ("linear", "pchip", "spline", "smoothing-spline")
+#: a speed outside a table: refuse (an error), hold (the end value), linear (the tangent line of the
+#: interpolant at the table's end: for linear interpolation the end segment's line), continue (the
+#: interpolant's end pieces continued: for smoothing-spline ROSS's extrapolation)
+EXTRAPOLATIONS = ("refuse", "hold", "linear", "continue")
 
 
 def _finite(value, key: str, where: str, *, minimum: float | None = None, strict: bool = False) -> float:
@@ -48,6 +55,68 @@ def _check_material(mat: Material, where: str) -> None:
 
 
 @dataclass
+class Layer:
+    """A further concentric layer of a shaft segment (a sleeve, an impeller hub, a shrink fit).
+
+    Annulus of outer diameter ``d`` and bore ``di`` at the segment's start, ``d_end``/``di_end`` at
+    its end (None: uniform), its own ``material`` and ``shear_coefficient`` (None: Cowper's for its
+    own annulus).  ROSS's convention (shaft elements that share a node number are summed): each
+    layer is a Timoshenko element of its own on the segment's nodes, with its own shear parameter
+    Phi = 12 E I / (kappa G A L^2) and its own interpolation; the matrices of the layers are added.
+    ``mass_only``: the layer adds inertia only -- translation rho A, rotary rho I, polar rho I_p
+    (gyroscopic and, with ``dofs = "full"``, axial and torsional inertia) -- and no stiffness; its
+    interpolation still uses its own Phi from its material's E and G."""
+
+    d: float
+    di: float
+    material: Material
+    d_end: float | None = None
+    di_end: float | None = None
+    shear_coefficient: float | None = None
+    mass_only: bool = False
+
+    def check(self, where: str) -> None:
+        _finite(self.d, "d", where, minimum=0.0, strict=True)
+        if self.d_end is not None:
+            _finite(self.d_end, "d_end", where, minimum=0.0, strict=True)
+        _finite(self.di, "di", where, minimum=0.0)
+        if self.di_end is not None:
+            _finite(self.di_end, "di_end", where, minimum=0.0)
+        if not self.di < self.d:
+            raise ModelError(where, "di", self.di, f"a bore smaller than the outer diameter d = {self.d:g} m")
+        if not self.bore_end < self.outer_end:
+            raise ModelError(where, "di_end", self.bore_end,
+                             f"a bore smaller than the outer diameter at the end ({self.outer_end:g} m)")
+        _check_material(self.material, where)
+        _check_kappa(self.shear_coefficient, where)
+        if not isinstance(self.mass_only, (bool, np.bool_)):
+            raise ModelError(where, "mass_only", self.mass_only, "true or false")
+
+    @property
+    def outer_end(self) -> float:
+        return self.d if self.d_end is None else float(self.d_end)
+
+    @property
+    def bore_end(self) -> float:
+        return self.di if self.di_end is None else float(self.di_end)
+
+
+def _check_kappa(kappa, where: str) -> None:
+    if kappa is not None:
+        k = _finite(kappa, "shear_coefficient", where, minimum=0.0, strict=True)
+        if k > 1.5:
+            raise ModelError(where, "shear_coefficient", k, "a shear coefficient in (0, 1.5] (about 0.85-0.9 "
+                             "for solid shafts)")
+
+
+def _overlap(a, b) -> bool:
+    """Whether two annuli (d, di, d_end, di_end) share area at the start or the end (1e-12 slack)."""
+    (d0, i0, d1, i1), (e0, j0, e1, j1) = a, b
+    tol = 1e-12 * max(d0, d1, e0, e1)
+    return (min(d0, e0) - max(i0, j0) > tol) or (min(d1, e1) - max(i1, j1) > tol)
+
+
+@dataclass
 class ShaftSegment:
     """A piece of shaft; segments are consecutive along x from x = 0.
 
@@ -57,7 +126,10 @@ class ShaftSegment:
     for a massless shaft); ``shear_coefficient`` kappa (None: Cowper's value for the hollow
     circle, 6 (1 + nu)(1 + m^2)^2 / ((7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2), m = di/d);
     ``added_mass_per_length`` (kg/m): non-structural mass carried by the segment (translational
-    inertia only, e.g. windings or sleeves that add no stiffness)."""
+    inertia only, e.g. windings or sleeves that add no stiffness); ``layers``: further concentric
+    :class:`Layer` s on the same nodes (a layered section: each layer its own Timoshenko element,
+    mass-only layers with translational, rotary and polar inertia and no stiffness).  The
+    segment's own (d, di, material) is the innermost structural layer; layers must not overlap."""
 
     length: float
     elements: int
@@ -68,6 +140,7 @@ class ShaftSegment:
     di_end: float | None = None
     shear_coefficient: float | None = None
     added_mass_per_length: float = 0.0
+    layers: Sequence[Layer] = ()
 
     def check(self, where: str) -> None:
         _finite(self.length, "length", where, minimum=0.0, strict=True)
@@ -85,12 +158,23 @@ class ShaftSegment:
             raise ModelError(where, "di_end", self.bore_end,
                              f"a bore smaller than the outer diameter at the end ({self.outer_end:g} m)")
         _check_material(self.material, where)
-        if self.shear_coefficient is not None:
-            k = _finite(self.shear_coefficient, "shear_coefficient", where, minimum=0.0, strict=True)
-            if k > 1.5:
-                raise ModelError(where, "shear_coefficient", k, "a shear coefficient in (0, 1.5] (about 0.85-0.9 "
-                                 "for solid shafts)")
+        _check_kappa(self.shear_coefficient, where)
         _finite(self.added_mass_per_length, "added_mass_per_length", where, minimum=0.0)
+        if isinstance(self.layers, (str, bytes)) or not isinstance(self.layers, Sequence):
+            raise ModelError(where, "layer", self.layers, "a list of fem.rotor.Layer")
+        rings = [(self.d, self.di, self.outer_end, self.bore_end)]
+        for j, lay in enumerate(self.layers, 1):
+            w = f"{where} layer #{j}"
+            if not isinstance(lay, Layer):
+                raise ModelError(w, "layer", lay, "a fem.rotor.Layer(d, di, material, ...)")
+            lay.check(w)
+            ring = (lay.d, lay.di, lay.outer_end, lay.bore_end)
+            for k, other in enumerate(rings):
+                if _overlap(ring, other):
+                    raise ModelError(w, "di", lay.di, "a layer that does not overlap "
+                                     + ("the segment's own section" if k == 0 else f"layer #{k}")
+                                     + f" (d = {other[0]:g}, di = {other[1]:g} m): concentric layers share no area")
+            rings.append(ring)
 
     @property
     def outer_end(self) -> float:
@@ -99,6 +183,12 @@ class ShaftSegment:
     @property
     def bore_end(self) -> float:
         return self.di if self.di_end is None else float(self.di_end)
+
+    def outer_diameter(self, u: float) -> float:
+        """The largest outer diameter over the segment's own section and its layers at the
+        fraction ``u`` in [0, 1] of its length, m."""
+        return max(d0 + (d1 - d0) * u for d0, d1 in
+                   [(self.d, self.outer_end)] + [(lay.d, lay.outer_end) for lay in self.layers])
 
 
 @dataclass
@@ -137,6 +227,24 @@ class Disc:
             raise ModelError(where, "mass", 0.0, "a disc with some inertia (mass, Id or Ip > 0)")
 
 
+DAMPING_RULE = ("damping whose symmetric part is positive semidefinite (cyy >= 0, czz >= 0, cyy czz >= "
+                "((cyz + czy)/2)^2: a bearing's damping must not feed energy into the shaft; stiffness may "
+                "have any sign)")
+
+
+def damping_not_dissipative(values: np.ndarray) -> tuple[int, str] | None:
+    """(column, offending key) of the first column of ``values`` (8, n) in BEARING_COEFFICIENTS order
+    whose damping matrix has an indefinite symmetric part, else None (relative slack 1e-12)."""
+    cyy, cyz, czy, czz = values[4], values[5], values[6], values[7]
+    scale = np.maximum(np.abs(cyy) + np.abs(czz) + np.abs(cyz) + np.abs(czy), 1e-300)
+    for key, bad in (("cyy", cyy < -1e-12 * scale), ("czz", czz < -1e-12 * scale),
+                     ("cyz", cyy * czz - 0.25 * (cyz + czy) ** 2 < -1e-12 * scale ** 2)):
+        if np.any(bad):
+            j = int(np.argmax(bad))
+            return j, ("czy" if key == "cyz" and abs(czy[j]) > abs(cyz[j]) else key)
+    return None
+
+
 @dataclass
 class Bearing:
     """A linear bearing or seal at ``x`` (m) acting on the lateral displacements (v, w) of the
@@ -145,10 +253,23 @@ class Bearing:
     Force on the shaft: f = -K d - C d', K = [[kyy, kyz], [kzy, kzz]] (N/m), C = [[cyy, cyz],
     [czy, czz]] (N s/m).  Each coefficient is a number (constant) or a table over ``speeds``
     (rad/s, increasing): the coefficient at a speed is interpolated (``interpolation`` =
-    "linear" or "pchip", shape-preserving cubic); a speed outside the table is an error, never
-    an extrapolation.  Direct coefficients kyy, kzz, cyy, czz must be >= 0 at every table speed,
-    and a bearing needs some direct stiffness or damping; cross-coupled ones may have any sign.
-    ``k_axial``, ``c_axial`` (N/m, N s/m): a thrust bearing on u (``dofs = "full"`` only)."""
+    "linear", "pchip" (shape-preserving cubic), "spline" (cubic spline, not-a-knot) or
+    "smoothing-spline" (ROSS's convention: scipy's UnivariateSpline with s = number of points, which
+    misses the table's points; :mod:`fem.rotor.tables`)); a speed outside the table follows
+    ``extrapolate``: "refuse" (an error, the default), "hold" (the end values), "linear" (the
+    interpolant's tangent line at the table's end) or "continue" (the interpolant's end pieces
+    continued: ROSS's extrapolation with "smoothing-spline"), with a warning that names the bearing
+    and the speeds outside its table.
+
+    Signs: stiffness coefficients, direct or cross-coupled, take any sign (a seal's direct
+    stiffness can be negative -- labyrinth seals, Lomakin effect --, so can an extrapolated
+    table's; the modal analysis reports the statically unstable rotor this may give).  The damping
+    matrix's symmetric part must be positive semidefinite at every table speed (cyy >= 0, czz >= 0,
+    cyy czz >= ((cyz + czy)/2)^2): the power the bearing's damping force takes from the shaft,
+    d'^T C d', is then >= 0, which the energy balances of run-ups count on; the skew part
+    (cross-coupled damping of seals) does no work and is free.  A bearing needs some nonzero
+    coefficient (cross-coupled stiffness alone: an aerodynamic cross-coupling).  ``k_axial``, ``c_axial`` (N/m, N s/m, >= 0): a thrust bearing on u
+    (``dofs = "full"`` only)."""
 
     x: float
     kyy: float | Sequence[float] = 0.0
@@ -161,6 +282,7 @@ class Bearing:
     czz: float | Sequence[float] = 0.0
     speeds: Sequence[float] | None = None
     interpolation: str = "linear"
+    extrapolate: str = "refuse"
     k_axial: float = 0.0
     c_axial: float = 0.0
     pedestal: str | None = None
@@ -170,6 +292,8 @@ class Bearing:
         _finite(self.x, "x", where)
         if self.interpolation not in INTERPOLATIONS:
             raise ModelError(where, "interpolation", self.interpolation, " | ".join(map(repr, INTERPOLATIONS)))
+        if self.extrapolate not in EXTRAPOLATIONS:
+            raise ModelError(where, "extrapolate", self.extrapolate, " | ".join(map(repr, EXTRAPOLATIONS)))
         table = self.table()
         if self.speeds is not None:
             grid = self.speed_grid
@@ -177,16 +301,16 @@ class Bearing:
                 raise ModelError(where, "speeds", list(np.atleast_1d(self.speeds)),
                                  "at least two increasing speeds >= 0 (rad/s)")
         for key in BEARING_COEFFICIENTS:
-            vals = table[key]
-            if not np.all(np.isfinite(vals)):
+            if not np.all(np.isfinite(table[key])):
                 raise ModelError(where, key, getattr(self, key), "finite numbers")
-            if key in ("kyy", "kzz", "cyy", "czz") and np.any(vals < 0):
-                bad = float(vals[np.argmin(vals)])
-                raise ModelError(where, key, bad, "a direct coefficient >= 0 (negative direct stiffness or "
-                                 "damping is not a bearing property; put cross-coupling in kyz/kzy, cyz/czy)")
-        if not any(np.any(table[k] != 0) for k in ("kyy", "kzz", "cyy", "czz")):
-            raise ModelError(where, "kyy", 0.0, "a bearing with some direct stiffness or damping "
-                             "(kyy, kzz, cyy or czz > 0): all direct coefficients are zero")
+        bad = damping_not_dissipative(np.stack([table[k] for k in BEARING_COEFFICIENTS]))
+        if bad is not None:
+            j, key = bad
+            at = f" at {self.speed_grid[j]:g} rad/s" if self.speeds is not None else ""
+            raise ModelError(where, key, float(table[key][j]), DAMPING_RULE + at)
+        if not any(np.any(table[k] != 0) for k in BEARING_COEFFICIENTS):
+            raise ModelError(where, "kyy", 0.0, "a bearing with some nonzero coefficient (direct, or cross-coupled "
+                             "only: an aerodynamic cross-coupling): all coefficients are zero")
         _finite(self.k_axial, "k_axial", where, minimum=0.0)
         _finite(self.c_axial, "c_axial", where, minimum=0.0)
 
@@ -363,8 +487,11 @@ class Rotor:
             dup = next(n for n in names if names.count(n) > 1)
             raise ModelError("[[rotor.pedestal]]", "name", dup, "unique pedestal names")
         used = set()
-        for i, b in enumerate(self.bearings, 1):
-            w = f"[[rotor.bearing]] #{i}"
+        numbers = {}                        # bearings computed from their geometry are numbered per table
+        for b in self.bearings:
+            table = getattr(b, "kind", "bearing")
+            numbers[table] = numbers.get(table, 0) + 1
+            w = f"[[rotor.{table}]] #{numbers[table]}"
             b.check(w)
             on_shaft(b.x, w)
             if b.pedestal is not None:

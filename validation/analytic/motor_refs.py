@@ -47,3 +47,13 @@ def drive_forced(omega, omega0, nu, T, J0, J1, c1, delta1, M1=1.0):
     A = np.array([[Z + ct - J0 * omega**2, -ct], [-ct, ct - J1 * omega**2]])
     x = np.linalg.solve(A, np.array([0.0, M1], dtype=complex))
     return x[0], x[1], -Z * x[0]
+
+
+def drive_forced_condition(omega, omega0, nu, T, J0, J1, c1, delta1) -> float:
+    """2-norm condition number of the dense dynamic stiffness of :func:`drive_forced` at ``omega``: two
+    backward-stable solves of the same system differ by O(cond * eps) relative (Higham, Accuracy and
+    Stability of Numerical Algorithms, §7.1), which is the round-off tolerance of comparisons against it."""
+    b = 1 / (nu * omega0)
+    Z = 1j * omega * b / (1 + 1j * omega * T)
+    ct = c1 * (1 + 2j * delta1)
+    return float(np.linalg.cond(np.array([[Z + ct - J0 * omega**2, -ct], [-ct, ct - J1 * omega**2]])))

@@ -35,9 +35,12 @@ SRC_1DOF_ROD = "Den Hartog (1931) exact Coulomb + viscous oscillator of mode 1 r
 
 # ------------------------------------------------------------------ measurement helpers
 def extreme(t: np.ndarray, y: np.ndarray) -> float:
-    """Maximum of y refined by the parabola through the largest sample and its neighbours."""
+    """Maximum of y refined by the parabola through the largest sample and its neighbours.  An event's
+    two records (before and after it) may carry times that differ in the last bits (the event time
+    computed twice); samples closer than 1e-6 of the stencil's width count as one instant, where the
+    extreme is the sample itself (a reversal: v = 0 there, and the acceleration jumps, so no parabola)."""
     k = int(np.argmax(y))
-    if k == 0 or k == y.size - 1 or t[k - 1] == t[k] or t[k] == t[k + 1]:
+    if k == 0 or k == y.size - 1 or min(t[k] - t[k - 1], t[k + 1] - t[k]) <= 1e-6 * (t[k + 1] - t[k - 1]):
         return float(y[k])
     c = np.polyfit(t[k - 1:k + 2] - t[k], y[k - 1:k + 2], 2)
     return float(y[k]) if c[0] >= 0 else float(c[2] - c[1] ** 2 / (4 * c[0]))
