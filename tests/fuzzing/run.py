@@ -45,7 +45,7 @@ FAST_VARIANTS = re.compile(r"/(nan|inf|-inf|count_1e9|count_1e9_float|string|boo
                            r"missing|fifo|dangling_symlink|array_depth_5000|inline_table_depth_2000|"
                            r"header_depth_1000|dotted_key_depth_1000|value_depth_3000|.*--json_.*|"
                            r".*--(modes|mode|workers)_.*)$")
-FAST_N = 56          # mutated files in the default tier (plus one cheap-base control per example)
+FAST_N = 56          # mutated files in the default tier (at least one per example; no controls: see test_fuzz_fast_sample)
 FAST_LIMIT_S = 20.0  # CPU-time limit of one run in the default tier (wall clock: WALL_FACTOR times it)
 SLOW_LIMIT_S = 60.0
 
@@ -291,7 +291,7 @@ def main(argv: list[str] | None = None) -> int:
             muts = fast_sample(examples, None if a.n == 3000 else a.n, a.seed)
         else:
             muts = slow_sample(examples, a.n, a.seed, budget=not a.no_budget)
-        ctrl = [] if a.no_controls else controls(examples, cheap_only=a.fast)
+        ctrl = [] if a.no_controls or a.fast else controls(examples)
     jobs = plan(ctrl + muts, examples, all_commands=not a.fast, wrong_kind_every=0 if a.fast else 10,
                 extras_every=0 if a.fast else a.extras_every, seed=a.seed)
     if a.list:
