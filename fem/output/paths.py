@@ -132,7 +132,12 @@ def check_outputs(values: dict[str, tuple[object, str]]) -> dict[str, Path]:
         if kind not in KINDS:
             raise ValueError(f"unknown output kind {kind!r}")
         if kind == "figure|dir":
-            kind = "figure" if Path(str(value)).suffix else "dir"
+            suffix = Path(str(value)).suffix
+            if suffix and suffix.lower() not in SUFFIXES["figure"]:
+                raise ModelError(WHERE, option, _short(str(value)), "a .png file (one figure) or a directory "
+                                 "without a suffix (every figure of the command); figure files end in "
+                                 + ", ".join(SUFFIXES["figure"]) + f" (not {suffix!r})")
+            kind = "figure" if suffix else "dir"
         p = check_output_path(value, option, directory=kind == "dir", kind=None if kind == "dir" else kind)
         ident = _identity(p)
         if ident in seen:
