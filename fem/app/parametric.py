@@ -44,7 +44,7 @@ def parametric(args) -> int:
     if args.png:
         from ..output.figures.parametric import plot_stability_chart
 
-        print(f"wrote {plot_stability_chart(chart, args.png, title=_figure_title(study.title, spec))}")
+        print(f"wrote {plot_stability_chart(chart, args.png, title=_figure_title(study.title, spec), normalise=spec.omega_unit != 'rad/s')}")
     for w in chart.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0

@@ -140,11 +140,13 @@ def overlapping_texts(fig, tolerance: float = 0.5) -> list[tuple[str, str]]:
 
 
 UNIT = re.compile(r"\[[^\]]+\]")
+NUMBER = re.compile(r"^[$\s]*[-\u2212+]?(\d|\\mathdefault)")
 
 
 def axis_labels_without_unit(fig) -> list[str]:
-    """Axes (by title or index) with visible tick labels on x or y but no axis label of the form
-    ``quantity [unit]`` there (dimensionless quantities: ``[-]``)."""
+    """Axes (by title or index) with visible numeric tick labels on x or y but no axis label of the
+    form ``quantity [unit]`` there (dimensionless quantities: ``[-]``; tick labels that name
+    categories, e.g. mode families, need none)."""
     _renderer(fig)
     fig.canvas.draw()
     bad = []
@@ -153,7 +155,8 @@ def axis_labels_without_unit(fig) -> list[str]:
             continue
         for name, axis, label in (("x", ax.xaxis, ax.get_xlabel()), ("y", ax.yaxis, ax.get_ylabel())):
             ticks = [t for t in axis.get_ticklabels() if t.get_visible() and t.get_text().strip()]
-            if ticks and not UNIT.search(label or ""):
+            numeric = any(NUMBER.search(t.get_text()) for t in ticks)      # categories need no unit
+            if numeric and not UNIT.search(label or ""):
                 bad.append(f"axes {i} ({ax.get_title() or 'untitled'}): {name} label {label!r}")
     return bad
 
