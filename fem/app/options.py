@@ -32,13 +32,13 @@ FIGURE_SUFFIXES = (".png", ".svg", ".svgz", ".pdf", ".eps", ".ps", ".jpg", ".jpe
 
 #: what ``--plot`` writes, per command: (form, the figures)
 FIGURES = {
-    "modal": (FILE, "the mode shapes (FE files: one panel per mode along the shaft with its supports and discs; "
-                    "rotor files: the orbits of the first lateral mode)"),
-    "forced": (EITHER, "a file: the response (FRF, nonlinear amplitude-frequency curve of [steady], or a rotor's "
-                       "Bode plot); a directory: every figure (response.png and, where the model has them, "
-                       "loads.png, and a rotor's polar_<k>_<probe>.png per probe)"),
-    "simulate": (DIRECTORY, "a directory: the time histories, phase portraits and energy balance (rotor run-ups: "
-                            "orbits, rub forces, run-up Bode plot, cascade)"),
+    "modal": (FILE, "the mode shapes (FE files: one panel per mode above a side view of the shaft with its supports "
+                    "and discs; rotor files: the orbits of the first lateral mode)"),
+    "forced": (EITHER, "the response (FRF, nonlinear amplitude-frequency curve of [steady], or a rotor's Bode plot); "
+                       "a directory gets every figure: frf.png, afc.png or bode.png, loads.png where the model has "
+                       "named outputs, and a rotor's polar_<k>_<probe>.png per probe"),
+    "simulate": (DIRECTORY, "the time histories (named outputs: twist, speeds, loads), phase portraits and energy "
+                            "balance (rotor run-ups: orbit radius, rub forces, orbits, run-up Bode plot, cascade)"),
     "campbell": (FILE, "the Campbell diagram with the log decrements"),
     "parametric": (FILE, "the stability chart"),
     "static": (FILE, "the static sag and the bearing loads"),
@@ -70,13 +70,15 @@ def add_outputs(p, command: str, *, json: str | None = "the result", csv: str | 
     """Register the shared output options of ``command`` on its parser ``p`` (texts from this
     module, so that every command says the same thing); ``old``: {old spelling: new option}."""
     if json:
-        p.add_argument("--json", metavar="FILE.json", help=f"write {json} as JSON here")
+        p.add_argument("--json", metavar="FILE.json", help=f"write {json} here (JSON)")
     if csv:
-        p.add_argument("--csv", metavar="FILE.csv", help=f"write {csv} as CSV here")
+        p.add_argument("--csv", metavar="FILE.csv", help=f"write {csv} here (CSV)")
     if plot:
         form, what = FIGURES[command]
         metavar = {FILE: "FILE.png", DIRECTORY: "DIR", EITHER: "FILE.png|DIR"}[form]
-        p.add_argument("--plot", metavar=metavar, help=f"write {what}")
+        text = {FILE: f"write {what} here (.png, .svg, .pdf)", DIRECTORY: f"write the figures into this directory: {what}",
+                EITHER: f"a file: write {what} there (.png, .svg, .pdf)"}[form]
+        p.add_argument("--plot", metavar=metavar, help=text)
     if render:
         p.add_argument("--render", metavar="DIR", help=f"render {render} off screen into this directory (PNG)")
     if html:
@@ -98,6 +100,9 @@ def resolve_old(args) -> None:
                              f"{new}, not both")
         setattr(args, attr, getattr(args, dest))
         setattr(args, dest, None)
+        spelled = getattr(args, "_spelled", None) or {}
+        spelled[attr] = spelling
+        args._spelled = spelled
     args._old_given = {}
 
 
@@ -105,7 +110,7 @@ def figure_form(command: str) -> str:
     return FIGURES[command][0]
 
 
-def plot_target(path, command: str, form: str | None = None) -> tuple[Path | None, Path | None]:
+def plot_target(path, command: str, form: str | None = None, option: str = "--plot") -> tuple[Path | None, Path | None]:
     """(file, None) or (None, directory) that ``--plot path`` names for ``command`` (``form``:
     the command's form for this kind of model, default :data:`FIGURES`); ModelError when it does
     not fit.  Nothing is created."""
@@ -115,21 +120,21 @@ def plot_target(path, command: str, form: str | None = None) -> tuple[Path | Non
     what = FIGURES[command][1] if command in FIGURES else "the figures"
     if form == FILE:
         if p.is_dir():
-            raise ModelError("command line", "--plot", str(path), f"a figure file name such as {command}.png "
+            raise ModelError("command line", option, str(path), f"a figure file name such as {command}.png "
                              f"(drivefem {command} draws one figure: {what}; this is a directory)")
         if suffix not in FIGURE_SUFFIXES:
-            raise ModelError("command line", "--plot", str(path), "a figure file name ending in .png, .svg or .pdf "
+            raise ModelError("command line", option, str(path), "a figure file name ending in .png, .svg or .pdf "
                              f"(drivefem {command} draws one figure: {what})")
         return p, None
     if form == DIRECTORY:
         if suffix in FILE_SUFFIXES or (p.exists() and not p.is_dir()):
-            raise ModelError("command line", "--plot", str(path), f"a directory (drivefem {command} draws several "
-                             f"figures: {what}; e.g. --plot {p.with_suffix('').name or 'figures'}/)")
+            raise ModelError("command line", option, str(path), f"a directory (drivefem {command} draws several "
+                             f"figures: {what}; e.g. {option} {p.with_suffix('').name or 'figures'}/)")
         return None, p
     if suffix in FIGURE_SUFFIXES and not p.is_dir():
         return p, None
     if suffix in FILE_SUFFIXES or (p.exists() and not p.is_dir()):
-        raise ModelError("command line", "--plot", str(path), "a figure file (.png, .svg, .pdf: the main figure) or a "
+        raise ModelError("command line", option, str(path), "a figure file (.png, .svg, .pdf: the main figure) or a "
                          f"directory (every figure) for drivefem {command}")
     return None, p
 
@@ -149,3 +154,38 @@ def need_plotly(args) -> None:
         from ..output.html import require_plotly
 
         require_plotly("--html")
+
+
+def prepare(args, command: str, **kinds) -> dict:
+    """Everything a command checks before any work: old spellings resolved (:func:`resolve_old`),
+    ``--quiet`` applied to every progress bar, each output path checked (``attr=kind``: ``"plot"``
+    in the command's form of :data:`FIGURES`, ``"dir"`` a directory, else a file), and plotly
+    present when ``--html`` is given.  Returns {attr: (file, directory)} of the paths given."""
+    from ..output.paths import check_output_path
+    from .progress import set_quiet
+
+    resolve_old(args)
+    set_quiet(getattr(args, "quiet", False))
+    out = {}
+    for attr, kind in kinds.items():
+        value = getattr(args, attr, None)
+        if value is None:
+            continue
+        option = (getattr(args, "_spelled", None) or {}).get(attr) or "--" + attr.replace("_", "-")
+        if str(value) == "":
+            raise ModelError("command line", option, "", "a non-empty path")
+        if kind == "plot":
+            file, folder = plot_target(value, command, option=option)
+        elif kind == "dir":
+            file, folder = None, directory_target(value, option, DIRECTORY_WHAT.get(attr, "the outputs"))
+        else:
+            file, folder = Path(value), None
+        check_output_path(file or folder, option, directory=folder is not None)
+        out[attr] = (file, folder)
+    need_plotly(args)
+    return out
+
+
+#: what a directory option holds (for the message when a file name is given)
+DIRECTORY_WHAT = {"render": "the 3D pictures (PNG, GIF) and their data files", "out": "the outputs",
+                  "report": "the validation report", "resume": "the sweep's point files", "gallery": "the gallery"}
