@@ -18,6 +18,7 @@ the new options that print one line on stderr naming the new spelling; giving bo
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -160,13 +161,14 @@ def prepare(args, command: str, **kinds) -> dict:
     """Everything a command checks before any work: old spellings resolved (:func:`resolve_old`),
     ``--quiet`` applied to every progress bar, each output path checked (``attr=kind``: ``"plot"``
     in the command's form of :data:`FIGURES`, ``"dir"`` a directory, else a file), and plotly
-    present when ``--html`` is given.  Returns {attr: (file, directory)} of the paths given."""
+    present when ``--html`` is given; two outputs on one path are bad input.  Returns
+    {attr: (file, directory)} of the paths given."""
     from ..output.paths import check_output_path
     from .progress import set_quiet
 
     resolve_old(args)
     set_quiet(getattr(args, "quiet", False))
-    out = {}
+    out, seen = {}, {}
     for attr, kind in kinds.items():
         value = getattr(args, attr, None)
         if value is None:
@@ -181,6 +183,11 @@ def prepare(args, command: str, **kinds) -> dict:
         else:
             file, folder = Path(value), None
         check_output_path(file or folder, option, directory=folder is not None)
+        target = Path(os.path.abspath(file or folder))
+        if target in seen:
+            raise ModelError("command line", option, str(value), f"a path other than that of {seen[target]} "
+                             "(two outputs would overwrite each other)")
+        seen[target] = option
         out[attr] = (file, folder)
     need_plotly(args)
     return out

@@ -206,10 +206,12 @@ def forced(args) -> int:
             for j, p in enumerate(res.probes):
                 name = _file_name(probe_label(p))
                 print(f"wrote {plot_polar(res, folder / f'polar_{j + 1}_{name}.png', j, title=study.title)}")
-            if loads is not None and loads.channels:
-                from ..output.figures import plot_output_amplitudes
+        if loads is not None and loads.channels:
+            from ..output.figures import plot_output_amplitudes
 
-                print(f"wrote {plot_output_amplitudes(loads, folder / 'loads.png', study.title)}")
+            path = (one.with_name(one.stem + "_loads" + (one.suffix or ".png")) if one is not None
+                    else folder / "loads.png")
+            print(f"wrote {plot_output_amplitudes(loads, path, study.title)}")
     if getattr(args, "html", None):
         from ..output.html import bode_html
 

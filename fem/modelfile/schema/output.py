@@ -8,7 +8,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Name, Table, rule
+from .base import Name, Real, Table, rule
 from .lumped import Ends, Ratios
 
 WHERE_KEYS = ("element", "body", "between", "support", "x")
@@ -44,7 +44,7 @@ class Output(Table):
     support: Name | None = None
     """A driver (lumped, hybrid), support (FE, hybrid: its name, else support[<index>] x=<x>), bearing or
     pedestal (rotor: its name, else <table>[<index>] x=<x>) by its name: its reaction."""
-    x: float | None = None
+    x: Real["m"] | None = None
     """A station on the shaft, m (FE, hybrid, rotor files): the section load there (quantity torque,
     moment, force, shear), the displacement, velocity or acceleration of the FE node (dof or components),
     or the reaction of a support or driver there."""
