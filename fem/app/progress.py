@@ -35,6 +35,16 @@ def _delay(default: float) -> float:
         return default
 
 
+def _shape() -> dict:
+    """tqdm's ``ncols`` and ``nrows`` of the terminal: one that reports a size of 0 (a new
+    pseudo-terminal, some CI runners) gets 80 x 24, where tqdm would draw nothing."""
+    try:
+        size = os.get_terminal_size(sys.stderr.fileno())
+    except (AttributeError, OSError, ValueError):
+        return {}
+    return {"ncols": size.columns or 80, "nrows": size.lines or 24}
+
+
 @contextmanager
 def progress_bar(start: float, end: float, desc: str, unit: str, *, quiet: bool = False, delay: float = DELAY):
     """A function ``update(value)`` that moves a bar from ``start`` to ``end`` (time or frequency)."""
@@ -42,7 +52,7 @@ def progress_bar(start: float, end: float, desc: str, unit: str, *, quiet: bool 
 
     span = abs(end - start) or 1.0
     bar = tqdm(total=round(span, 12), desc=desc, unit=unit, file=sys.stderr, disable=_disable(quiet), leave=False,
-               delay=_delay(delay),
+               delay=_delay(delay), **_shape(),
                bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g} {unit} [{elapsed}<{remaining}]")
     done = [0.0]
 
@@ -65,7 +75,7 @@ def count_bar(desc: str, unit: str, *, quiet: bool = False, delay: float = DELAY
     from tqdm import tqdm
 
     bar = tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=_disable(quiet), leave=False,
-               delay=_delay(delay))
+               delay=_delay(delay), **_shape())
 
     def update(done: int, total: int) -> None:
         if total != bar.total:

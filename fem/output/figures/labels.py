@@ -161,10 +161,27 @@ def axis_labels_without_unit(fig) -> list[str]:
     return bad
 
 
+def colours_without_bar(fig) -> list[str]:
+    """Axes (by title or index) where colour encodes a value (an image, a mesh, points or lines
+    coloured by an array of numbers) in a figure without any colour bar."""
+    if any(getattr(ax, "_colorbar", None) is not None for ax in fig.axes):
+        return []
+    bad = []
+    for i, ax in enumerate(fig.axes):
+        for art in list(ax.collections) + list(ax.images):
+            values = art.get_array() if hasattr(art, "get_array") else None
+            if values is not None and np.size(values) > 1:
+                bad.append(f"axes {i} ({ax.get_title() or 'untitled'}): {type(art).__name__} coloured by value")
+                break
+    return bad
+
+
 def figure_report(fig) -> dict:
     """What the figure standards check on a drawn figure: overlapping text pairs, axes without a
-    unit label, and the titles (axes titles and the figure's suptitle)."""
+    unit label, colour that encodes a value without a colour bar, and the titles (axes titles and
+    the figure's suptitle)."""
     titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
     if getattr(fig, "_suptitle", None) is not None and fig._suptitle.get_text():
         titles.append(fig._suptitle.get_text())
-    return {"overlaps": overlapping_texts(fig), "without_unit": axis_labels_without_unit(fig), "titles": titles}
+    return {"overlaps": overlapping_texts(fig), "without_unit": axis_labels_without_unit(fig),
+            "without_colour_bar": colours_without_bar(fig), "titles": titles}

@@ -50,13 +50,13 @@ def plot_afc(result, path, ax=None, label=None, title: str = "") -> None:
         q, u = measure_label(result.response_label)
         ax.set_ylabel(f"{q} [{u}]", fontsize=8.5)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="best")
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)   # off the curves
         sub = "amplitude-frequency curve (continuation)" + ("" if getattr(result, "completed", True) else
                                                               ": stopped early, partial branch")
         ax.set_title((title + "\n" if title else "") + sub, fontsize=9)
         fig.tight_layout()
         Path(path).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=120)
+        fig.savefig(path, dpi=120, bbox_inches="tight")
         plt.close(fig)
 
 
