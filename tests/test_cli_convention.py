@@ -175,3 +175,14 @@ def test_progress_of_the_long_commands_in_a_pty(tmp_path, argv, bar):
     text = b"".join(chunks).decode(errors="replace")
     assert proc.returncode == 0, text[-2000:]
     assert f"{bar}:" in text and "%|" in text, text[-1000:]
+
+
+def test_docs_cli_page_lists_every_plot_form_and_old_spelling():
+    """docs/cli.md's tables follow fem.app.options: a command's --plot form and every old spelling."""
+    text = (ROOT / "docs" / "cli.md").read_text()
+    for name, (form, _) in FIGURES.items():
+        assert f"| `{name}` | {form} |" in text, name
+    for name, p in _commands().items():
+        for a in p._actions:
+            if a.help == argparse.SUPPRESS and a.option_strings and hasattr(a, "new"):
+                assert f"| `{name} {a.option_strings[0]}" in text and a.new.split()[0] in text, (name, a.option_strings)
