@@ -90,3 +90,25 @@ def test_amplitude_frequency_curve_legend_in_words(tmp_path, figures):
     legends = figures["afc.png"][1]
     assert any("stable branch" in t for t in legends) and "fold (turning point)" in legends
     assert not any("(stable)" in t or "AFT" in t for t in legends)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("argv, names", [
+    (["parametric", "parametric_drive.toml", "--plot", "chart.png"], {"chart.png"}),
+    (["forced", "motor_drive_forced.toml", "--plot", "f"], {"frf.png", "loads.png"}),
+    (["forced", "drive_forced.toml", "--plot", "frf.png"], {"frf.png"}),
+    (["forced", "torsion_shaft_disc.toml", "--plot", "f"], None),
+    (["simulate", "geared_mesh.toml", "--plot", "f"], None),
+    (["simulate", "discrete_bouncing_ball.toml", "--plot", "f"], None),
+    (["simulate", "hybrid_drill_string.toml", "--plot", "f"], None),
+    (["simulate", "rotor_rub_runup.toml", "--plot", "f"], None),
+])
+def test_more_figure_types_meet_the_standards(tmp_path, figures, argv, names):
+    """Further figure types of the demo: the parametric chart, drive FRFs with named outputs, geared and
+    impact time histories, a hybrid drill string, a rotor run-up through a rub."""
+    command, example, option, target = argv
+    analysis = tomllib.loads((EX / example).read_text()).get("analysis", {})
+    if command == "forced" and analysis.get("type", "forced") != "forced":
+        pytest.skip(f"{example} is not a forced-response file")
+    assert main([command, str(EX / example), option, str(tmp_path / target), "--quiet"]) == 0
+    _standards(figures, _title(example), names or set(figures))

@@ -109,7 +109,7 @@ def test_forced_plot_file_or_directory(tmp_path, capsys, figures):
          **{n: True for n in names if n.startswith("polar_")}}
     capsys.readouterr()
     assert main(["forced", str(JEFFCOTT), "--plot", str(tmp_path / "bode.txt")]) == 2
-    assert "a .png file (one figure) or a directory" in capsys.readouterr().err
+    assert "a figure file (.png, .svg, .pdf: the main figure) or a directory" in capsys.readouterr().err
 
 
 def test_html_outputs_and_missing_plotly(tmp_path, capsys, monkeypatch):

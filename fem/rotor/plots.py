@@ -539,7 +539,7 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
         ax.set_ylim(-lim, lim)
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
-    axes[0].set_ylabel("z [mm]")
+        ax.set_ylabel("z [mm]")
     name = res.probe_names[probe] if probe < len(getattr(res, "probe_names", [])) else ""
     fig.suptitle((title + "\n" if title else "") + f"orbits at {name + ', ' if name else ''}x = {x:g} m (last 3 "
                  "revolutions)" + (f"; dashed: {rub.name}'s clearance" if rub is not None else "")

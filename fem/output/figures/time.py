@@ -70,6 +70,7 @@ def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: s
                 x = x - (slope * result.t + icpt)
                 lab = f"{n}: x - {slope:.4g} t (mean motion removed)"
         a.plot(x, result.v[i], lw=0.8)
+        a.locator_params(axis="x", nbins=5)          # long tick labels (-0.0004) kept apart
         a.set_xlabel(lab + " [m | rad]", fontsize=8.5)
         a.set_ylabel(f"{n}: velocity v [m/s | rad/s]", fontsize=8.5)
         a.set_title(_title_lines(title, f"phase portrait of {n}"), fontsize=8.5)
