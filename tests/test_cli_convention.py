@@ -186,3 +186,25 @@ def test_docs_cli_page_lists_every_plot_form_and_old_spelling():
         for a in p._actions:
             if a.help == argparse.SUPPRESS and a.option_strings and hasattr(a, "new"):
                 assert f"| `{name} {a.option_strings[0]}" in text and a.new.split()[0] in text, (name, a.option_strings)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("argv, title, axes", [
+    (["simulate", LUMPED], "seed 000: stick-slip", {"time t [s]", "force [N | N m]"}),
+    (["forced", str(EX / "forced_torsion.toml")], "Clamped shaft with a harmonic end moment",
+     {"frequency f [Hz]", "amplitude [rad]", "phase lag [deg]"}),
+])
+def test_html_is_one_self_contained_file(tmp_path, capsys, argv, title, axes):
+    """--html (time histories, FRF): one file with plotly inside (no script loaded from elsewhere), the
+    model's title and the axes with units."""
+    pytest.importorskip("plotly")
+    import json
+    import re
+
+    page = tmp_path / "figure.html"
+    assert main(argv + ["--html", str(page), "--quiet"]) == 0
+    text = page.read_text()
+    assert "<script src=" not in text and "Plotly.newPlot" in text
+    titles = {json.loads(f'"{t}"') for t in re.findall(r'"title":\{"text":"((?:[^"\\]|\\.)*)"', text)}
+    assert axes <= titles and any(title in t for t in titles), sorted(titles)
+    capsys.readouterr()
