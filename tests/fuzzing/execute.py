@@ -176,8 +176,8 @@ class Runner:
             actions.append((art[m.artifact][0], "model.toml"))
             setup.append(art[m.artifact][1])
         outputs = {"--json": "out/result.json"}
-        if cmd == "render":       # no --json: its JSON (modes.json) goes into --out
-            outputs = {"--out": "out/render"}
+        if cmd == "render":       # no --json: its JSON (modes.json) goes into --render
+            outputs = {"--render": "out/render"}
         if cmd == "sweep":
             outputs["--out"] = "out/sweep"
         secondary = dict(SECONDARY_OUTPUTS.get(cmd, ()))

@@ -22,7 +22,7 @@ mutations, a change of the command line.  Categories:
 ``encoding``     binary, non-UTF-8, UTF-16, BOM, NUL bytes, empty, whitespace- or comment-only files
 ``filesystem``   a directory, a missing file, a FIFO, a dangling symlink instead of the model file
 ``nesting``      deeply nested arrays / inline tables / table headers
-``output``       --json (--csv, --png, --plot, --vtu, --out) into a path under a regular file, an existing
+``output``       --json (--csv, --plot, --render, --vtu, --h5, --out) into a path under a regular file, an existing
                  directory (or file), a read-only directory, /dev/full, an empty path, a 300-character
                  name, a suffix the writer does not produce, or the path of another output option
 ``extreme``      schema-valid but physically extreme: one stiffness or inertia scaled by 1e10 or 1e-10 (a
@@ -58,13 +58,13 @@ OUTPUT_KINDS = {
 }
 #: Output options besides --json, per command: (option, what it names).
 SECONDARY_OUTPUTS = {
-    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir"), ("--csv", "file")),
+    "modal": (("--plot", "file"), ("--vtu", "file"), ("--render", "dir"), ("--csv", "file")),
     "forced": (("--csv", "file"), ("--plot", "file")),
-    "simulate": (("--csv", "file"), ("--png", "dir"), ("--h5", "file")),
+    "simulate": (("--csv", "file"), ("--plot", "dir"), ("--h5", "file")),
     "sweep": (("--out", "dir"),),
-    "render": (("--out", "dir"),),
-    "campbell": (("--png", "file"), ("--csv", "file")),
-    "parametric": (("--png", "file"), ("--csv", "file")),
+    "render": (("--render", "dir"),),
+    "campbell": (("--plot", "file"), ("--csv", "file")),
+    "parametric": (("--plot", "file"), ("--csv", "file")),
 }
 #: The suffix a file output is named with (the figure options write PNG).
 FILE_SUFFIX = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu", "--png": ".png", "--h5": ".h5",
