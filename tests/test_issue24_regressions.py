@@ -134,20 +134,20 @@ def test_2_parametric_high_harmonic_grid_resolves_the_pulsation(tmp_path, capsys
 
 
 # ------------------------------------------------------------- 3, 4, 8, 9: output paths, before any work
-@pytest.mark.parametrize("argv", [
-    ["forced", "sdof_base_motion.toml", "--plot", "out.xyz"],
-    ["campbell", "rotor_friswell.toml", "--png", "out.xyz"],
-    ["parametric", "parametric_drive.toml", "--png", "out.xyz"],
-    ["forced", "forced_torsion.toml", "--csv", "out.json"],
-    ["modal", "cantilever.toml", "--vtu", "out.png"],
-], ids=["forced-plot", "campbell-png", "parametric-png", "csv", "vtu"])
-def test_3_unknown_suffix_is_refused_before_the_work(tmp_path, capsys, monkeypatch, argv):
+@pytest.mark.parametrize("argv, word", [
+    (["forced", "sdof_base_motion.toml", "--plot", "out.xyz"], "'.xyz' is not a figure format"),
+    (["campbell", "rotor_friswell.toml", "--plot", "out.xyz"], "a figure file name ending in"),
+    (["parametric", "parametric_drive.toml", "--plot", "out.xyz"], "a figure file name ending in"),
+    (["forced", "forced_torsion.toml", "--csv", "out.json"], "a file name ending in .csv"),
+    (["modal", "cantilever.toml", "--vtu", "out.png"], "a file name ending in .vtu"),
+], ids=["forced-plot", "campbell-plot", "parametric-plot", "csv", "vtu"])
+def test_3_unknown_suffix_is_refused_before_the_work(tmp_path, capsys, monkeypatch, argv, word):
     monkeypatch.chdir(tmp_path)
     import fem.study
 
     monkeypatch.setattr(fem.study.Study, "load", lambda *a, **k: pytest.fail("the model was loaded"))
     option = argv[2]
-    _refused(capsys, [argv[0], EX / argv[1], *argv[2:]], f"{option} = 'out.", "a file name ending in")
+    _refused(capsys, [argv[0], EX / argv[1], *argv[2:]], f"{option} = 'out.", word)
 
 
 def test_4_over_long_file_name_is_refused_with_a_clear_message(tmp_path, capsys, monkeypatch):
@@ -162,19 +162,20 @@ def test_4_over_long_file_name_is_refused_with_a_clear_message(tmp_path, capsys,
 
 def test_8_two_outputs_into_one_path_are_refused(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    _refused(capsys, ["forced", EX / "forced_torsion.toml", "--json", "same", "--csv", "same"], "--json")
-    _refused(capsys, ["modal", EX / "cantilever.toml", "--json", "same.json", "--png", "same.json"],
-             "--png", "--json writes to the same path")
+    _refused(capsys, ["forced", EX / "forced_torsion.toml", "--json", "same", "--csv", "same"], "--csv", "--json",
+             "two outputs would overwrite each other")
+    _refused(capsys, ["modal", EX / "cantilever.toml", "--json", "same", "--plot", "same"], "--")
+    _refused(capsys, ["modal", EX / "cantilever.toml", "--json", "same.json", "--render", "same.json"], "--render")
     (tmp_path / "a.json").write_text("{}")
     os.symlink(tmp_path / "a.json", tmp_path / "b.csv")            # one file under two names
     _refused(capsys, ["forced", EX / "forced_torsion.toml", "--json", "a.json", "--csv", "b.csv"],
-             "--csv", "--json writes to the same path")
-    _refused(capsys, ["simulate", EX / "discrete_coulomb_decay.toml", "--json", "o/r.json", "--png", "o/r.json"],
-             "--png", "same path")
+             "--csv", "--json", "two outputs would overwrite each other")
+    _refused(capsys, ["simulate", EX / "discrete_coulomb_decay.toml", "--json", "o/r.json", "--plot", "o/r.json"],
+             "--plot")
     assert (tmp_path / "a.json").read_text() == "{}"
 
 
-@pytest.mark.parametrize("option", ["--json", "--plot", "--png"])
+@pytest.mark.parametrize("option", ["--json", "--plot", "--render"])
 def test_9_empty_output_path_is_refused(tmp_path, capsys, monkeypatch, option):
     monkeypatch.chdir(tmp_path)
     _refused(capsys, ["modal", EX / "cantilever.toml", option, ""], f"{option} = ''", "a non-empty path")
@@ -195,7 +196,7 @@ def test_output_to_a_device_is_refused(tmp_path, capsys):
     (["campbell", "rotor_friswell.toml", "--modes", "-3"], ["--modes = -3"]),
     (["modal", "cantilever.toml", "--modes", "0"], ["--modes = 0"]),
     (["modal", "rotor_friswell.toml", "--modes", "1000000000"], ["--modes = 1000000000"]),
-    (["render", "cantilever.toml", "--out", "r", "--mode", "0"], ["--mode = 0"]),
+    (["render", "cantilever.toml", "--render", "r", "--mode", "0"], ["--mode = 0"]),
     (["sweep", "hybrid_sweep_vibro_impact.toml", "--workers", "-1"], ["--workers = -1", "0: serial"]),
     (["sweep", "hybrid_sweep_vibro_impact.toml", "--workers", "100000"], ["--workers = 100000"]),
 ], ids=["campbell-0", "campbell-neg", "modal-0", "rotor-modal-huge", "render-mode-0", "workers-neg", "workers-huge"])
