@@ -383,11 +383,12 @@ class EventDrivenSolver:
         p = self.p
         elements = p.elements
         nel = p.n_el
-        trig = trig if len(trig) == 1 else sorted(set(trig))
-        knots = [i - nel for i, _ in trig if i >= nel]
+        if len(trig) != 1:
+            trig = sorted(set(trig))           # (the knots of programme laws, i >= nel, come last)
         modes = list(mode)
         jumps, knot_events = {}, []
-        if knots:
+        if trig[-1][0] >= nel:
+            knots = [i - nel for i, _ in trig if i >= nel]
             E0 = self._energy(t, z, modes)
             moved = False
             for k in knots:
@@ -464,34 +465,37 @@ class EventDrivenSolver:
         zero_len = 0
         n_pieces = 0
         stopped, reason = False, ""
+        mode_affine, exact, numeric, apply = p.mode_affine, self._propagate_exact, self._propagate_numeric, self._apply
+        max_zero_length, max_events = o.max_zero_length, o.max_events
         try:
             while t < t_end:
                 n_pieces += 1
-                if p.mode_affine(mode):
-                    te, ze, trig = self._propagate_exact(t, z, mode, t_end, rec, acc)
+                if mode_affine(mode):
+                    te, ze, trig = exact(t, z, mode, t_end, rec, acc)
                 else:
-                    te, ze, trig = self._propagate_numeric(t, z, mode, t_end, rec, acc)
+                    te, ze, trig = numeric(t, z, mode, t_end, rec, acc)
                 if not trig:
                     t, z = te, ze
                     if rec.last_t != t:
                         rec(t, z, mode, acc["W"])
                     break
                 zero_len = zero_len + 1 if te == t else 0
-                if zero_len > o.max_zero_length:
+                if zero_len > max_zero_length:
                     rec.drop_last()            # the state reaching the event (the event is not applied)
                     stopped, reason = True, (f"no progress at t = {te!r}: {zero_len} consecutive events "
                                              f"({', '.join(f'{p.actor_name(i)}:{g}' for i, g in trig)}) "
                                              "without time advancing (chattering or accumulation)")
                     t, z = te, ze
                     break
-                z, mode, evs, jumps = self._apply(te, ze, mode, trig, impact_ref)
-                for part, jump in jumps.items():
-                    acc["W"] += jump
-                    acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
+                z, mode, evs, jumps = apply(te, ze, mode, trig, impact_ref)
+                if jumps:
+                    for part, jump in jumps.items():
+                        acc["W"] += jump
+                        acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
                 t = te
                 rec(t, z, mode, acc["W"])
-                events.extend(evs)
-                if len(events) >= o.max_events:
+                events += evs
+                if len(events) >= max_events:
                     stopped, reason = True, (f"event limit max_events = {o.max_events} reached at t = {t!r} "
                                              f"(last event: {evs[-1].kind if evs else '-'} of "
                                              f"{evs[-1].element if evs else '-'}); results up to there are kept")
@@ -735,9 +739,11 @@ class EventContext:
     def project_velocity(self, target: float) -> None:
         """Set s' to ``target`` (the kinetic-energy-minimal velocity jump); the generalised impulse along
         s this takes, m_eff (target - s'), is recorded with the element's event (Event.impulse)."""
-        jump = (target - self.velocity()) * self.solver._effective_mass(self.t, self.i)
-        self.impulses[self.i] = self.impulses.get(self.i, 0.0) + jump
-        self.z = self.solver._project_velocity(self.t, self.z, self.i, target)
+        solver, i, t = self.solver, self.i, self.t
+        jump = (target - self.velocity()) * solver._effective_mass(t, i)
+        impulses = self.impulses
+        impulses[i] = impulses.get(i, 0.0) + jump
+        self.z = solver._project(t, self.z, i, target, True)
 
     def project_position(self, target: float) -> None:
         self.z = self.solver._project_position(self.t, self.z, self.i, target)
