@@ -594,12 +594,13 @@ def _kernel():
 
 
 class _Recorder:
-    """The recorded instants, states, mode ids and accumulated work, in growing arrays (doubled when
-    full): single samples (an instant at an event) and blocks (written by the kernel straight into
-    the arrays, then counted by :meth:`filled`).  The sample count ``n`` is advanced last, so a
-    Ctrl-C halfway through a record leaves the arrays consistent.  The progress callback is told the
-    time reached every ``PROGRESS_SAMPLES`` samples (a bar needs no more: a call per event cost ~5%
-    of a run of short pieces) and at the end (:meth:`arrays`)."""
+    """The recorded instants, states and accumulated work, in growing arrays (doubled when full):
+    single samples (an instant at an event) and blocks (written by the kernel straight into the
+    arrays, then counted by :meth:`filled`); the mode of the samples as runs (the sample where each
+    mode starts).  The sample count ``n`` is advanced last, so a Ctrl-C halfway through a record
+    leaves the arrays consistent.  The progress callback is told the time reached every
+    ``PROGRESS_SAMPLES`` samples (a bar needs no more: a call per event cost ~5% of a run of short
+    pieces) and at the end (:meth:`arrays`)."""
 
     PROGRESS_SAMPLES = 256
 
@@ -607,9 +608,9 @@ class _Recorder:
         cap = 1024
         self.t, self.W = np.empty(cap), np.empty(cap)
         self.Z = np.empty((cap, z0.size))
-        self.which = np.empty(cap, dtype=np.int64)
         self.ids: dict = {}
-        self._mode, self._mode_id = None, -1          # the last mode seen and its id
+        self._mode, self._mode_id = None, -1          # the mode of the last sample and its id
+        self._starts, self._run_ids = [], []          # the first sample of each run of one mode, its id
         self.n = 0
         self.progress = progress
         self._report_at = 0 if progress is not None else math.inf     # sample count of the next report
@@ -620,20 +621,21 @@ class _Recorder:
         need = self.n + k
         if need > self.t.size:
             cap = max(2 * self.t.size, need)
-            for name in ("t", "W", "Z", "which"):
+            for name in ("t", "W", "Z"):
                 old = getattr(self, name)
                 new = np.empty((cap,) + old.shape[1:], dtype=old.dtype)
                 new[:self.n] = old[:self.n]
                 setattr(self, name, new)
 
-    def _id(self, mode) -> int:
-        if mode is self._mode:
-            return self._mode_id
+    def _switch(self, mode) -> None:
+        """The samples from ``n`` on are in ``mode``."""
         i = self.ids.get(mode)
         if i is None:
             i = self.ids[mode] = len(self.ids)
+        if i != self._mode_id:
+            self._starts.append(self.n)
+            self._run_ids.append(i)
         self._mode, self._mode_id = mode, i
-        return i
 
     @property
     def last_t(self) -> float:
@@ -644,20 +646,22 @@ class _Recorder:
         self.progress(t)
 
     def __call__(self, t, z, mode, W) -> None:
+        if mode is not self._mode:
+            self._switch(mode)
         n = self.n
         if n == self.t.size:
             self.grow(1)
         self.t[n] = t
         self.W[n] = W
         self.Z[n] = z
-        self.which[n] = self._id(mode)
         self.n = n + 1
         if n >= self._report_at:
             self._report(n, t)
 
     def filled(self, n: int, mode) -> None:
         """Count the samples self.n .. n - 1 the kernel wrote into the arrays (all in ``mode``)."""
-        self.which[self.n:n] = self._id(mode)
+        if mode is not self._mode:
+            self._switch(mode)
         self.n = n
         if n >= self._report_at:
             self._report(n, float(self.t[n - 1]))
@@ -666,12 +670,18 @@ class _Recorder:
         """Forget the last sample."""
         self.n -= 1
 
+    def which(self) -> np.ndarray:
+        """The mode id of every sample."""
+        n = self.n
+        starts = np.minimum(np.array(self._starts + [n], dtype=np.int64), n)
+        return np.repeat(np.array(self._run_ids, dtype=np.int64), np.diff(starts))
+
     def arrays(self):
         """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W)."""
         n = self.n
         if self.progress is not None:
             self.progress(float(self.t[n - 1]))
-        return self.t[:n].copy(), self.Z[:n], list(self.ids), self.which[:n].copy(), self.W[:n].copy()
+        return self.t[:n].copy(), self.Z[:n], list(self.ids), self.which(), self.W[:n].copy()
 
 
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
