@@ -321,10 +321,12 @@ def _step_events(R, T, ng, h, hh, z, gd0, gd1, first, W, have_W, c, cand_tau, ca
 
 
 @njit(cache=True)
-def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, out_t, out_z, out_W, n0, z, hits):
+def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, out_t, out_z, out_W, n0, z, hits,
+            start):
     """March the piece from (t, z0) step by step, recording the step ends (and the output
     instants k dt_out inside the steps when dt_out > 0) in out_* from row ``n0`` on, until the first
-    event (recorded too: the state reaching it), t_end or a full buffer.  ``work`` accumulates the work of each power category.  On return ``z`` holds
+    event (recorded too: the state reaching it), t_end or a full buffer; with ``start``, the state
+    (t, z0) is recorded first (the state leaving the event before the piece).  ``work`` accumulates the work of each power category.  On return ``z`` holds
     the event's state (or the last step end) and ``hits`` which guards fire within round-off of the
     event instant.
 
@@ -343,6 +345,11 @@ def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, ou
     w = np.empty(nparts)
     n, steps = n0, 0
     cap = out_t.size
+    if start:
+        out_t[n] = t
+        out_z[n, :] = z0
+        out_W[n] = W_total
+        n += 1
     while True:
         hh = min(h, t_end - t)
         if hh <= 0.0:

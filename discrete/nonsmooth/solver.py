@@ -235,8 +235,11 @@ class EventDrivenSolver:
             if n0 + room > rec.t.size:
                 rec.grow(room)
             z_out = np.empty(nz)
+            start = rec.pending is not None        # the state leaving the last event: the kernel records it
             why, n, steps, t, W = advance(P, R, T, G, Q, ng, h, z, t, t_end, first, dt_out, acc["W"], work,
-                                          rec.t, rec.Z, rec.W, n0, z_out, hits)
+                                          rec.t, rec.Z, rec.W, n0, z_out, hits, start)
+            if start:
+                rec.pending = None
             z = z_out
             acc["steps"] += steps
             if n > n0:
@@ -473,6 +476,7 @@ class EventDrivenSolver:
                 if mode_affine(mode):
                     te, ze, trig = exact(t, z, mode, t_end, rec, acc)
                 else:
+                    rec.flush()
                     te, ze, trig = numeric(t, z, mode, t_end, rec, acc)
                 if not trig:
                     t, z = te, ze
@@ -493,7 +497,7 @@ class EventDrivenSolver:
                         acc["W"] += jump
                         acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
                 t = te
-                rec(t, z, mode, acc["W"])
+                rec.pending = (t, z, mode, acc["W"])     # recorded by the next piece's kernel (or flush)
                 events += evs
                 if len(events) >= max_events:
                     stopped, reason = True, (f"event limit max_events = {o.max_events} reached at t = {t!r} "
@@ -504,6 +508,7 @@ class EventDrivenSolver:
             stopped, reason = True, f"solver stopped at t = {t!r}: {exc}"
         except KeyboardInterrupt:
             stopped, reason = True, "interrupted (Ctrl-C): the results up to there are kept"
+        rec.flush()
         return self._result(rec, events, t_end, n_pieces, acc, stopped, reason)
 
     def _result(self, rec, events, t_end, n_pieces, acc, stopped, reason):
@@ -614,6 +619,7 @@ class _Recorder:
         self.n = 0
         self.progress = progress
         self._report_at = 0 if progress is not None else math.inf     # sample count of the next report
+        self.pending = None        # (t, z, mode, W) of a sample to record before the next ones
         self(t0, z0, mode, 0.0)
 
     def grow(self, k: int) -> None:
@@ -665,6 +671,12 @@ class _Recorder:
         self.n = n
         if n >= self._report_at:
             self._report(n, float(self.t[n - 1]))
+
+    def flush(self) -> None:
+        """Record the pending sample (if any)."""
+        if self.pending is not None:
+            sample, self.pending = self.pending, None
+            self(*sample)
 
     def drop_last(self) -> None:
         """Forget the last sample."""
