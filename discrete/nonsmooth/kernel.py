@@ -326,9 +326,9 @@ def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, ou
     """March the piece from (t, z0) step by step, recording the step ends (and the output
     instants k dt_out inside the steps when dt_out > 0) in out_* from row ``n0`` on, until the first
     event (recorded too: the state reaching it), t_end or a full buffer; with ``start``, the state
-    (t, z0) is recorded first (the state leaving the event before the piece).  ``work`` accumulates the work of each power category.  On return ``z`` holds
-    the event's state (or the last step end) and ``hits`` which guards fire within round-off of the
-    event instant.
+    (t, z0) is recorded first (the state leaving the event before the piece).  ``work`` accumulates
+    the work of each power category.  On return ``z`` holds the event's state (or the last step end)
+    and ``hits`` which guards fire within round-off of the event instant.
 
     Returns (why, n, steps, t, W_total): the samples are rows n0 .. n - 1; t the event's instant (or
     the last step end)."""
