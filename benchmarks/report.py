@@ -474,7 +474,7 @@ def benchmarks_md(runs: list[ScriptRun], meta: dict) -> str:
         text = "\n".join(l for l in run.output.splitlines() if not l.startswith(common.PREFIX)
                          and not l.startswith("# "))
         title = f"### {run.script}" + (f" (stored run of {run.stored})" if run.stored else "")
-        out += [title, "", "```", text.strip() or "(no output)", "```", ""]
+        out += [title, "", "```text", text.strip() or "(no output)", "```", ""]
     return "\n".join(out)
 
 

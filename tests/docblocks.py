@@ -1,0 +1,317 @@
+"""The code blocks of README.md and docs/**/*.md, and how the tests run them (docs/writing_docs.md).
+
+Every fenced block names its language.  ``sh``/``bash`` and ``python`` blocks are executed
+(tests/test_doc_blocks.py); ``toml`` blocks are parsed; ``text``, ``json`` and the rest are shown
+only.  An HTML comment on the line just before the fence (invisible on GitHub and on the site)
+changes how a block is run::
+
+    <!-- doctest: skip: REASON -->       not run; the reason is required and reported
+    <!-- doctest: slow -->               run in the slow tier (make test-slow)
+    <!-- doctest: timeout=SECONDS -->    the block's time limit (default 60 s, slow blocks 900 s)
+    <!-- doctest: exit=N -->             the block must end with exit status N (an error example)
+    <!-- doctest: render -->             needs off-screen rendering (skipped without it, unless
+                                         DRIVEFEM_REQUIRE_RENDER=1)
+    <!-- doctest: continue -->           a python block run after the page's previous python block,
+                                         in the same process (a walk-through split by prose)
+    <!-- doctest: file=PATH -->          the block is an excerpt of PATH: its lines are lines of the
+                                         file, in order ('...' lines aside)
+    <!-- doctest: output rtol=R atol=A --> a text block that shows what the previous runnable block
+                                         prints: its lines must appear, in order, in that output;
+                                         numbers compared with numpy.isclose(rtol=R, atol=A), the
+                                         rest word for word; lines '...' are not compared
+
+Words combine: ``<!-- doctest: slow timeout=300 render -->``.
+
+Blocks run in a sandbox: a temporary directory that mirrors the repository root (``examples/`` is
+copied, the other top-level entries are linked), so ``examples/x.toml`` resolves and outputs land
+in the temporary directory.  ``drivefem``, ``.venv/bin/drivefem``, ``python`` and
+``.venv/bin/python`` there are this interpreter with this checkout on PYTHONPATH.
+"""
+from __future__ import annotations
+
+import os
+import re
+import resource
+import shutil
+import subprocess
+import sys
+import textwrap
+import time
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SHELL = {"sh", "bash", "shell"}
+PYTHON = {"python", "py"}
+RUNNABLE = SHELL | PYTHON
+DEFAULT_TIMEOUT, SLOW_TIMEOUT = 60.0, 900.0
+FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^`]*)$")
+DIRECTIVE = re.compile(r"^\s*<!--\s*doctest:\s*(?P<body>.*?)\s*-->\s*$")
+FLAGS = {"slow", "render", "continue", "output"}
+KEYS = {"timeout": float, "exit": int, "rtol": float, "atol": float, "file": str}
+NUMBER = re.compile(r"([-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?)")
+
+
+class DocBlockError(ValueError):
+    """A directive that breaks the convention (the message names file and line)."""
+
+
+@dataclass
+class Block:
+    path: Path
+    line: int                       # 1-based line of the opening fence
+    language: str
+    code: str
+    directive: str = ""
+    skip: str | None = None         # the reason, when not run
+    flags: set[str] = field(default_factory=set)
+    options: dict = field(default_factory=dict)
+    expected: "Block | None" = None  # the output block shown after it
+    previous: "Block | None" = None  # the python block a 'continue' block follows
+
+    @property
+    def where(self) -> str:
+        return f"{self.path.relative_to(ROOT)}:{self.line}"
+
+    @property
+    def runnable(self) -> bool:
+        return self.language in RUNNABLE
+
+    @property
+    def slow(self) -> bool:
+        return "slow" in self.flags
+
+    @property
+    def timeout(self) -> float:
+        return self.options.get("timeout", SLOW_TIMEOUT if self.slow else DEFAULT_TIMEOUT)
+
+    def script(self) -> str:
+        """The python source to run: the chain of 'continue' blocks up to this one."""
+        parts, block = [], self
+        while block is not None:
+            parts.append(block.code)
+            block = block.previous if "continue" in block.flags else None
+        return "\n".join(reversed(parts))
+
+
+def doc_files() -> list[Path]:
+    """README.md and every Markdown page under docs/ (new pages are covered without a list)."""
+    return [ROOT / "README.md"] + sorted((ROOT / "docs").rglob("*.md"))
+
+
+def parse_directive(body: str, where: str) -> tuple[str | None, set[str], dict]:
+    if body.startswith("skip"):
+        reason = body[4:].lstrip(" :").strip()
+        if not body[4:].lstrip().startswith(":") or not reason:
+            raise DocBlockError(f"{where}: write '<!-- doctest: skip: REASON -->' with the reason")
+        return reason, set(), {}
+    flags, options = set(), {}
+    for word in body.split():
+        key, eq, value = word.partition("=")
+        if eq:
+            if key not in KEYS:
+                raise DocBlockError(f"{where}: unknown doctest option {key!r}; allowed: {sorted(KEYS)}")
+            try:
+                options[key] = KEYS[key](value)
+            except ValueError:
+                raise DocBlockError(f"{where}: doctest option {key}={value!r} is not a {KEYS[key].__name__}") from None
+        elif word in FLAGS:
+            flags.add(word)
+        else:
+            raise DocBlockError(f"{where}: unknown doctest word {word!r}; allowed: skip: REASON, "
+                                f"{', '.join(sorted(FLAGS))}, {', '.join(k + '=' for k in KEYS)}")
+    return None, flags, options
+
+
+def parse(path: Path) -> tuple[list[Block], list[str]]:
+    """The fenced blocks of one Markdown file, with their directives, outputs and chains linked,
+    and the problems found (each names file and line; a block with a problem is not run)."""
+    problems: list[str] = []
+    lines = path.read_text(encoding="utf-8").split("\n")
+    rel = path.relative_to(ROOT)
+    blocks: list[Block] = []
+    i = 0
+    while i < len(lines):
+        m = FENCE.match(lines[i])
+        if not m:
+            i += 1
+            continue
+        indent, fence, info = m["indent"], m["fence"], m["info"].strip()
+        close = re.compile(rf"^[ \t]*{re.escape(fence[0])}{{{len(fence)},}}[ \t]*$")
+        j = i + 1
+        while j < len(lines) and not close.match(lines[j]):
+            j += 1
+        if j == len(lines):
+            problems.append(f"{rel}:{i + 1}: the code block is never closed")
+            break
+        body = [ln[len(indent):] if ln.startswith(indent) else ln.lstrip() for ln in lines[i + 1:j]]
+        where = f"{rel}:{i + 1}"
+        k = i - 1
+        while k >= 0 and not lines[k].strip():
+            k -= 1
+        d = DIRECTIVE.match(lines[k]) if k >= 0 else None
+        directive = d["body"] if d else ""
+        try:
+            skip, flags, options = parse_directive(directive, where) if d else (None, set(), {})
+        except DocBlockError as exc:
+            problems.append(str(exc))
+            skip, flags, options = "the doctest directive above it is not valid", set(), {}
+        language = info.split()[0].lower() if info else ""
+        blocks.append(Block(path, i + 1, language, textwrap.dedent("\n".join(body)) + "\n", directive,
+                            skip, flags, options))
+        i = j + 1
+    last_runnable = last_python = None
+    for b in blocks:
+        where = f"{rel}:{b.line}"
+        if not b.language:
+            problems.append(f"{where}: the code block has no language; give it one (sh or python: run "
+                            "by the tests; toml: parsed; text: shown only)")
+        if "output" in b.flags:
+            if b.runnable:
+                problems.append(f"{where}: 'output' marks the text block that shows a command's output, "
+                                "not a runnable block")
+            elif last_runnable is None or last_runnable.expected is not None or last_runnable.skip:
+                problems.append(f"{where}: an 'output' block must follow the runnable block (not skipped) "
+                                "whose output it shows")
+            else:
+                last_runnable.expected = b
+        if "continue" in b.flags:
+            if b.language not in PYTHON or last_python is None:
+                problems.append(f"{where}: 'continue' joins a python block to the page's previous python block")
+            else:
+                b.previous = last_python
+        if b.runnable:
+            last_runnable = b
+        if b.language in PYTHON:
+            last_python = b
+    return blocks, problems
+
+
+def all_blocks() -> tuple[list[Block], list[str]]:
+    """Every block of every page, and every problem found."""
+    blocks, problems = [], []
+    for path in doc_files():
+        b, p = parse(path)
+        blocks += b
+        problems += p
+    return blocks, problems
+
+
+# -- running -------------------------------------------------------------------------------------
+
+def make_sandbox(tmp: Path) -> Path:
+    """A directory that looks like the repository root: examples/ copied (blocks may write next
+    to a model file), the other top-level entries linked; .venv/bin holds the shims."""
+    for entry in ROOT.iterdir():
+        if entry.name in {".git", ".venv", "site", "examples"} or entry.name.startswith(".pytest"):
+            continue
+        (tmp / entry.name).symlink_to(entry, target_is_directory=entry.is_dir())
+    shutil.copytree(ROOT / "examples", tmp / "examples", ignore=shutil.ignore_patterns("__pycache__"))
+    bin_dir = tmp / ".venv" / "bin"
+    bin_dir.mkdir(parents=True)
+    shims = {"drivefem": f'exec "{sys.executable}" -c "import sys; from fem.app.cli import main; '
+                         f'sys.argv[0] = \'drivefem\'; sys.exit(main())" "$@"',
+             "python": f'exec "{sys.executable}" "$@"'}
+    shims["python3"] = shims["python"]
+    for name, line in shims.items():
+        shim = bin_dir / name
+        shim.write_text(f"#!/bin/sh\n{line}\n")
+        shim.chmod(0o755)
+    return tmp
+
+
+def environment(sandbox: Path) -> dict:
+    env = dict(os.environ)
+    env["PATH"] = f"{sandbox / '.venv' / 'bin'}{os.pathsep}{env.get('PATH', '')}"
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT)] + [p for p in [env.get("PYTHONPATH")] if p])
+    env.update(MPLBACKEND="Agg", PYVISTA_OFF_SCREEN="true", PYTHONDONTWRITEBYTECODE="1")
+    env.pop("DISPLAY", None)
+    return env
+
+
+def run(block: Block, sandbox: Path) -> subprocess.CompletedProcess:
+    """Run the block; with DOCBLOCKS_TIMES=FILE set, append its CPU and wall seconds to FILE (to
+    keep the default tier within its budget on a loaded machine, where wall time says little)."""
+    before, t0 = resource.getrusage(resource.RUSAGE_CHILDREN), time.perf_counter()
+    result = _run(block, sandbox)
+    log = os.environ.get("DOCBLOCKS_TIMES")
+    if log:
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+        with open(log, "a", encoding="utf-8") as fh:
+            fh.write(f"{block.where}\t{block.language}\t{'slow' if block.slow else 'default'}\t"
+                     f"{cpu:.2f}\t{time.perf_counter() - t0:.2f}\n")
+    return result
+
+
+def _run(block: Block, sandbox: Path) -> subprocess.CompletedProcess:
+    if block.language in SHELL:
+        argv = ["bash", "-e", "-o", "pipefail", "-c", block.code]
+    else:
+        script = sandbox / f"doc_block_{block.line}.py"
+        script.write_text(block.script(), encoding="utf-8")
+        argv = [sys.executable, str(script)]
+    return subprocess.run(argv, cwd=sandbox, env=environment(sandbox), stdin=subprocess.DEVNULL,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                          timeout=block.timeout)
+
+
+# -- expected output -----------------------------------------------------------------------------
+
+def _pieces(line: str) -> tuple[list[str], list[float]]:
+    parts = NUMBER.split(line)
+    words = [" ".join(p.split()) for p in parts[0::2]]
+    return words, [float(p) for p in parts[1::2]]
+
+
+def line_matches(expected: str, actual: str, rtol: float, atol: float) -> bool:
+    ew, en = _pieces(expected)
+    aw, an = _pieces(actual)
+    if ew != aw or len(en) != len(an):
+        return False
+    return all(abs(a - e) <= atol + rtol * abs(e) for e, a in zip(en, an))
+
+
+def check_output(expected: Block, output: str) -> None:
+    """Every shown line, in order, in the output (numbers within the block's tolerances)."""
+    rtol, atol = expected.options.get("rtol", 0.0), expected.options.get("atol", 0.0)
+    actual = [ln for ln in output.splitlines() if ln.strip()]
+    pos = 0
+    for want in expected.code.splitlines():
+        if not want.strip() or want.strip() in {"...", "…"}:
+            continue
+        for k in range(pos, len(actual)):
+            if line_matches(want, actual[k], rtol, atol):
+                pos = k + 1
+                break
+        else:
+            near = [a for a in actual[pos:] if _pieces(a)[0] == _pieces(want)[0]][:1]
+            hint = f"; the nearest line printed: {near[0]!r}" if near else ""
+            raise AssertionError(f"{expected.where}: the shown line {want!r} is not in the output of "
+                                 f"the block above (rtol={rtol}, atol={atol}){hint}\n--- output ---\n{output}")
+
+
+def check_excerpt(block: Block) -> None:
+    """A block marked ``file=PATH`` shows an excerpt of that file: each of its non-blank lines is a
+    line of the file (surrounding spaces aside), in the file's order."""
+    path = ROOT / block.options["file"]
+    if not path.is_file():
+        raise AssertionError(f"{block.where}: file={block.options['file']} does not exist")
+    lines = [ln.strip() for ln in path.read_text(encoding="utf-8").splitlines()]
+    pos = 0
+    for want in (ln.strip() for ln in block.code.splitlines()):
+        if not want or want in {"...", "…"}:
+            continue
+        try:
+            pos = lines.index(want, pos) + 1
+        except ValueError:
+            raise AssertionError(f"{block.where}: the line {want!r} is not in {block.options['file']} "
+                                 "(after the lines shown before it)") from None
+
+
+def check_toml(block: Block) -> None:
+    try:
+        tomllib.loads(block.code)
+    except tomllib.TOMLDecodeError as exc:
+        raise AssertionError(f"{block.where}: the toml block does not parse: {exc}") from None

@@ -1,0 +1,85 @@
+"""Every shell and Python block of README.md and docs/**/*.md runs, so a page that drifts from the
+code fails here (convention: docs/writing_docs.md, tests/docblocks.py).
+
+The blocks are found anew at every collection: a new page or a new block is covered without any
+list to update.  Unmarked blocks run in the default tier (each within 60 s); blocks marked
+``<!-- doctest: slow -->`` in the slow tier; ``<!-- doctest: skip: REASON -->`` blocks are reported
+as skipped with their reason.
+"""
+import os
+
+import pytest
+
+from tests import docblocks as db
+
+BLOCKS, PROBLEMS = db.all_blocks()
+
+
+def _param(block: db.Block):
+    marks = []
+    if block.skip:
+        marks.append(pytest.mark.skip(reason=f"{block.where}: {block.skip}"))
+    elif block.slow:
+        marks.append(pytest.mark.slow)
+    return pytest.param(block, marks=marks, id=f"{block.where}:{block.language}")
+
+
+@pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if b.runnable])
+def test_doc_block_runs(block, tmp_path):
+    if "render" in block.flags and os.environ.get("DRIVEFEM_REQUIRE_RENDER") != "1":
+        from fem.render import available
+        ok, why = available()
+        if not ok:
+            pytest.skip(f"off-screen rendering unavailable: {why}")
+    sandbox = db.make_sandbox(tmp_path)
+    result = db.run(block, sandbox)
+    want = block.options.get("exit", 0)
+    assert result.returncode == want, (
+        f"{block.where}: the {block.language} block ended with exit status {result.returncode} "
+        f"(expected {want})\n--- block ---\n{block.script()}--- output ---\n{result.stdout}")
+    assert "Traceback (most recent call last)" not in result.stdout or block.language == "python", (
+        f"{block.where}: a traceback in the output\n{result.stdout}")
+    if block.expected is not None:
+        db.check_output(block.expected, result.stdout)
+
+
+@pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if b.language == "toml"])
+def test_doc_toml_block_parses(block):
+    db.check_toml(block)
+
+
+@pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if "file" in b.options])
+def test_doc_excerpt_matches_its_file(block):
+    db.check_excerpt(block)
+
+
+def test_every_block_follows_the_convention():
+    """No block without a language, no unknown or malformed directive, no 'output' block without
+    its command before it, no 'skip' without its reason, no unclosed block."""
+    assert not PROBLEMS, "docs code blocks that break the convention (docs/writing_docs.md):\n" + "\n".join(PROBLEMS)
+    assert sum(b.runnable for b in BLOCKS) > 20
+
+
+def test_the_checker_catches_drift(tmp_path):
+    """The output check fails on a changed number, passes within tolerance, and the parser refuses
+    what the convention forbids (a self-test: the doc tests cannot pass vacuously)."""
+    page = tmp_path / "page.md"
+    page.write_text("```sh\necho 'mode 1  16.158985 Hz'\n```\n\n<!-- doctest: output rtol=1e-6 -->\n"
+                    "```text\nmode 1  16.15899 Hz\n...\n```\n")
+    root = db.ROOT
+    try:
+        db.ROOT = tmp_path
+        blocks, problems = db.parse(page)
+        assert not problems and blocks[0].expected is blocks[1]
+        db.check_output(blocks[1], "mode 1  16.158985 Hz\n")
+        with pytest.raises(AssertionError, match="16.15899"):
+            db.check_output(blocks[1], "mode 1  16.2 Hz\n")
+        for text, msg in (("```\nx\n```\n", "no language"),
+                          ("<!-- doctest: skip -->\n```sh\nx\n```\n", "reason"),
+                          ("<!-- doctest: fast -->\n```sh\nx\n```\n", "unknown doctest word"),
+                          ("<!-- doctest: output -->\n```text\nx\n```\n", "must follow"),
+                          ("```sh\nx\n", "never closed")):
+            page.write_text(text)
+            assert msg in " ".join(db.parse(page)[1])
+    finally:
+        db.ROOT = root
