@@ -7,7 +7,7 @@ changes how a block is run::
 
     <!-- doctest: skip: REASON -->       not run; the reason is required and reported
     <!-- doctest: slow -->               run in the slow tier (make test-slow)
-    <!-- doctest: timeout=SECONDS -->    the block's time limit (default 60 s, slow blocks 900 s)
+    <!-- doctest: timeout=SECONDS -->    the block's time limit (default 120 s, slow blocks 900 s)
     <!-- doctest: exit=N -->             the block must end with exit status N (an error example)
     <!-- doctest: render -->             needs off-screen rendering (skipped without it, unless
                                          DRIVEFEM_REQUIRE_RENDER=1)
@@ -45,7 +45,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SHELL = {"sh", "bash", "shell"}
 PYTHON = {"python", "py"}
 RUNNABLE = SHELL | PYTHON
-DEFAULT_TIMEOUT, SLOW_TIMEOUT = 60.0, 900.0
+DEFAULT_TIMEOUT, SLOW_TIMEOUT = 120.0, 900.0
 FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^`]*)$")
 DIRECTIVE = re.compile(r"^\s*<!--\s*doctest:\s*(?P<body>.*?)\s*-->\s*$")
 FLAGS = {"slow", "render", "continue", "output"}

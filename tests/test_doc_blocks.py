@@ -2,7 +2,7 @@
 code fails here (convention: docs/writing_docs.md, tests/docblocks.py).
 
 The blocks are found anew at every collection: a new page or a new block is covered without any
-list to update.  Unmarked blocks run in the default tier (each within 60 s); blocks marked
+list to update.  Unmarked blocks run in the default tier (each within 120 s); blocks marked
 ``<!-- doctest: slow -->`` in the slow tier; ``<!-- doctest: skip: REASON -->`` blocks are reported
 as skipped with their reason.
 """
