@@ -198,12 +198,16 @@ class RotorBearing(Table):
     """Speeds of a coefficient table, rad/s, increasing."""
     speeds_rpm: Annotated[list[NonNegative["rpm"]], Field(min_length=2)] | None = None
     """Speeds of a coefficient table, rev/min, increasing (or give speeds)."""
-    interpolation: Literal["linear", "pchip", "spline"] = "linear"
+    interpolation: Literal["linear", "pchip", "spline", "smoothing-spline"] = "linear"
     """Interpolation of a table between its speeds (pchip: shape-preserving cubic; spline: cubic spline
-    through the points, not-a-knot ends)."""
-    extrapolate: Literal["refuse", "hold", "linear"] = "refuse"
-    """A speed outside the table: refuse (an error), hold (the end values) or linear (the interpolant's
-    tangent line at the table's end); hold and linear warn, naming the bearing and the speeds."""
+    through the points, not-a-knot ends; smoothing-spline: ROSS's convention, a cubic smoothing spline
+    with s = number of points (scipy's UnivariateSpline) -- not an interpolant, it misses the table's
+    points)."""
+    extrapolate: Literal["refuse", "hold", "linear", "continue"] = "refuse"
+    """A speed outside the table: refuse (an error), hold (the end values), linear (the interpolant's
+    tangent line at the table's end) or continue (the interpolant's end pieces continued; with
+    smoothing-spline ROSS's extrapolation); hold, linear and continue warn, naming the bearing and the
+    speeds."""
     k_axial: NonNegative["N/m"] = 0.0
     """Thrust-bearing stiffness on u, N/m (dofs = "full" only)."""
     c_axial: NonNegative["N*s/m"] = 0.0
