@@ -13,6 +13,8 @@ changes how a block is run::
                                          DRIVEFEM_REQUIRE_RENDER=1)
     <!-- doctest: continue -->           a python block run after the page's previous python block,
                                          in the same process (a walk-through split by prose)
+    <!-- doctest: synopsis -->           a text block with the usage of every drivefem command, one
+                                         line each, with all of its options (checked against the parser)
     <!-- doctest: file=PATH -->          the block is an excerpt of PATH: its lines are lines of the
                                          file, in order ('...' lines aside)
     <!-- doctest: output rtol=R atol=A --> a text block that shows what the previous runnable block
@@ -48,7 +50,7 @@ RUNNABLE = SHELL | PYTHON
 DEFAULT_TIMEOUT, SLOW_TIMEOUT = 120.0, 900.0
 FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})[ \t]*(?P<info>[^`]*)$")
 DIRECTIVE = re.compile(r"^\s*<!--\s*doctest:\s*(?P<body>.*?)\s*-->\s*$")
-FLAGS = {"slow", "render", "continue", "output"}
+FLAGS = {"slow", "render", "continue", "output", "synopsis"}
 KEYS = {"timeout": float, "exit": int, "rtol": float, "atol": float, "file": str}
 NUMBER = re.compile(r"([-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?)")
 

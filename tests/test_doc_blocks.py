@@ -83,3 +83,57 @@ def test_the_checker_catches_drift(tmp_path):
             assert msg in " ".join(db.parse(page)[1])
     finally:
         db.ROOT = root
+
+
+def _cli_options() -> dict[str, set[str]]:
+    """{command: its option strings} from the command line's own parser."""
+    import argparse
+
+    from fem.app.cli import build_parser
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return {name: {s for a in p._actions for s in a.option_strings} for name, p in sub.choices.items()}
+
+
+def test_command_lines_shown_in_the_docs_exist():
+    """Every line of a shell block or of a usage synopsis (a text block of ``drivefem ...`` lines,
+    which is not run) that starts with ``drivefem COMMAND`` names a real command and only options
+    it accepts (the command line's own parser)."""
+    import re
+    options = _cli_options()
+    wrong = []
+    for b in BLOCKS:
+        lines = [ln for ln in b.code.splitlines() if ln.strip()]
+        synopsis = lines and all(re.match(r"\s*(drivefem |#)", ln) for ln in lines)
+        if not (b.runnable or synopsis):        # printed output may start with the word drivefem
+            continue
+        for line in lines:
+            m = re.match(r"\s*(?:\.venv/bin/)?drivefem\s+([a-z]+)\b(.*)", line)
+            if not m or line.lstrip().startswith("drivefem:"):
+                continue
+            command, rest = m[1], m[2].split("#")[0]
+            if command not in options:
+                wrong.append(f"{b.where}: no command 'drivefem {command}': {line.strip()}")
+                continue
+            for flag in re.findall(r"(?<![\w-])--[a-z][\w-]*", rest):
+                if flag not in options[command]:
+                    wrong.append(f"{b.where}: 'drivefem {command}' has no option {flag}: {line.strip()}")
+    assert not wrong, "\n".join(wrong)
+
+
+@pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if "synopsis" in b.flags])
+def test_synopsis_lists_every_command_and_option(block):
+    """A block marked ``synopsis`` lists every command of the command line, each with all of its
+    options: a new command or option that the page does not show fails here."""
+    import re
+    options = _cli_options()
+    shown = {}
+    for line in block.code.splitlines():
+        m = re.match(r"\s*drivefem\s+([a-z]+)\b(.*)", line)
+        if m:
+            shown[m[1]] = set(re.findall(r"(?<![\w-])--[a-z][\w-]*", m[2]))
+    assert sorted(shown) == sorted(options), f"{block.where}: commands shown {sorted(shown)}, the parser's {sorted(options)}"
+    missing = {c: sorted(options[c] - {"-h", "--help"} - {o for o in options[c] if not o.startswith("--")} - f)
+               for c, f in shown.items()}
+    missing = {c: m for c, m in missing.items() if m}
+    assert not missing, f"{block.where}: options not shown: {missing}"
