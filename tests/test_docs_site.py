@@ -1,0 +1,36 @@
+"""The documentation site's structure (the build itself is `make docs`, run by CI): every public
+package has an API page, and every API page is in the site's navigation."""
+import ast
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+MARKER = re.compile(r"^<!-- api: ([\w.]+) -->$", re.M)
+
+
+def _packages_with_all() -> set[str]:
+    out = set()
+    for init in sorted(ROOT.glob("*/__init__.py")) + sorted(ROOT.glob("*/*/__init__.py")):
+        if init.parts[-2 if init.parent.parent == ROOT else -3] not in {"fem", "discrete"}:
+            continue
+        tree = ast.parse(init.read_text(encoding="utf-8"))
+        if any(isinstance(n, ast.Assign) and any(getattr(t, "id", None) == "__all__" for t in n.targets)
+               for n in tree.body):
+            out.add(".".join(init.parent.relative_to(ROOT).parts))
+    return out
+
+
+def test_every_public_package_has_an_api_page():
+    documented = {m for page in (ROOT / "docs" / "api").glob("*.md") for m in MARKER.findall(page.read_text())}
+    missing = _packages_with_all() - documented
+    assert {"fem", "discrete", "fem.rotor", "discrete.steady"} <= documented
+    assert not missing, (f"packages with __all__ but no API page: {sorted(missing)}; add docs/api/NAME.md with "
+                         "'<!-- api: PACKAGE -->' and a nav entry in mkdocs.yml (docs/writing_docs.md)")
+
+
+def test_every_page_is_in_the_navigation():
+    nav = (ROOT / "mkdocs.yml").read_text()
+    pages = [p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").rglob("*.md")
+             if "hooks" not in p.parts]
+    missing = [p for p in pages if not re.search(rf"(^|[\s:]){re.escape(p)}\s*$", nav, re.M)]
+    assert not missing, f"docs pages not in the nav of mkdocs.yml: {missing}"
