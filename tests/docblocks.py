@@ -261,22 +261,40 @@ def _run(block: Block, sandbox: Path) -> subprocess.CompletedProcess:
 
 # -- expected output -----------------------------------------------------------------------------
 
-def _pieces(line: str) -> tuple[list[str], list[float]]:
-    parts = NUMBER.split(line)
-    words = [" ".join(p.split()) for p in parts[0::2]]
-    return words, [float(p) for p in parts[1::2]]
+NUM = r"(?<![\w.])([-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?)(?![\w.])"
+
+
+def _pattern(expected: str) -> re.Pattern:
+    """A regex for the shown line: its words literally (a run of spaces matches any), its numbers
+    captured."""
+    parts = NUMBER.split(expected.strip())
+    rx = []
+    for k, part in enumerate(parts):
+        if k % 2:
+            rx.append(NUM)
+        else:
+            rx.append(r"\s+".join(re.escape(w) for w in part.split(" ") if w) if part.strip() else r"\s*")
+            if part[:1].isspace() and k:
+                rx.insert(-1, r"\s+")
+            if part[-1:].isspace() and k < len(parts) - 1:
+                rx.append(r"\s+")
+    return re.compile("".join(rx))
 
 
 def line_matches(expected: str, actual: str, rtol: float, atol: float) -> bool:
-    ew, en = _pieces(expected)
-    aw, an = _pieces(actual)
-    if ew != aw or len(en) != len(an):
-        return False
-    return all(abs(a - e) <= atol + rtol * abs(e) for e, a in zip(en, an))
+    """Whether the shown line (or a piece of a long line wrapped for the page) is in ``actual``, its
+    numbers within ``atol + rtol |expected|``."""
+    want = [float(x) for x in NUMBER.findall(expected)]
+    for m in _pattern(expected).finditer(actual):
+        got = [float(x) for x in m.groups()]
+        if all(abs(a - e) <= atol + rtol * abs(e) for e, a in zip(want, got)):
+            return True
+    return False
 
 
 def check_output(expected: Block, output: str) -> None:
-    """Every shown line, in order, in the output (numbers within the block's tolerances)."""
+    """Every shown line, in order, in the output (numbers within the block's tolerances); a line of
+    the page may be a piece of a longer printed line (wrapped for the page)."""
     rtol, atol = expected.options.get("rtol", 0.0), expected.options.get("atol", 0.0)
     actual = [ln for ln in output.splitlines() if ln.strip()]
     pos = 0
@@ -285,10 +303,11 @@ def check_output(expected: Block, output: str) -> None:
             continue
         for k in range(pos, len(actual)):
             if line_matches(want, actual[k], rtol, atol):
-                pos = k + 1
+                pos = k
                 break
         else:
-            near = [a for a in actual[pos:] if _pieces(a)[0] == _pieces(want)[0]][:1]
+            words = NUMBER.sub(" ", want).split()[:3]
+            near = [a for a in actual[pos:] if words and all(w in a for w in words)][:1]
             hint = f"; the nearest line printed: {near[0]!r}" if near else ""
             raise AssertionError(f"{expected.where}: the shown line {want!r} is not in the output of "
                                  f"the block above (rtol={rtol}, atol={atol}){hint}\n--- output ---\n{output}")
