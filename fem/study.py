@@ -136,8 +136,9 @@ class Study:
         self._need("rotor", what="a rotor")
         return assemble_rotor(build_rotor.rotor_model(self.doc))
 
-    def campbell(self, n_modes: int | None = None):
-        """Rotor files: the Campbell diagram of [campbell] with its critical speeds."""
+    def campbell(self, n_modes: int | None = None, progress=None):
+        """Rotor files: the Campbell diagram of [campbell] with its critical speeds
+        (``progress(done, total)`` after each solve: :func:`fem.rotor.campbell`)."""
         from .rotor import campbell
 
         self._need("rotor", what="drivefem campbell")
@@ -148,7 +149,7 @@ class Study:
         speeds = build_rotor.speed_grid(t, "[campbell]")
         tol = self.analysis.tolerance if self.analysis is not None else 1e-6
         return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
-                        critical=t.critical, tolerance=tol)
+                        critical=t.critical, tolerance=tol, progress=progress)
 
     def linear_system(self):
         """The linear part: FE assembled, lumped with gears eliminated, hybrid compiled."""

@@ -108,7 +108,7 @@ def test_command_lines_shown_in_the_docs_exist():
         if not (b.runnable or synopsis):        # printed output may start with the word drivefem
             continue
         for line in lines:
-            m = re.match(r"\s*(?:\.venv/bin/)?drivefem\s+([a-z]+)\b(.*)", line)
+            m = re.match(r"\s*(?:\.venv/bin/)?drivefem\s+([a-z][a-z-]*)(.*)", line)
             if not m or line.lstrip().startswith("drivefem:"):
                 continue
             command, rest = m[1], m[2].split("#")[0]
@@ -129,7 +129,7 @@ def test_synopsis_lists_every_command_and_option(block):
     options = _cli_options()
     shown = {}
     for line in block.code.splitlines():
-        m = re.match(r"\s*drivefem\s+([a-z]+)\b(.*)", line)
+        m = re.match(r"\s*drivefem\s+([a-z][a-z-]*)(.*)", line)
         if m:
             shown[m[1]] = set(re.findall(r"(?<![\w-])--[a-z][\w-]*", m[2]))
     assert sorted(shown) == sorted(options), f"{block.where}: commands shown {sorted(shown)}, the parser's {sorted(options)}"

@@ -59,6 +59,7 @@ PINNED = {
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
     "two_mass_chain.toml": ["lumped-two-mass-chain"],
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
+    "rotor_jeffcott_seal.toml": ["rotor-jeffcott-seal-cli"],
 }
 """Example file -> the validation cases that load it as their model."""
 
