@@ -34,3 +34,10 @@ def test_every_page_is_in_the_navigation():
              if "hooks" not in p.parts]
     missing = [p for p in pages if not re.search(rf"(^|[\s:]){re.escape(p)}\s*$", nav, re.M)]
     assert not missing, f"docs pages not in the nav of mkdocs.yml: {missing}"
+
+
+def test_the_gallery_shows_every_figure_of_the_docs():
+    """docs/gallery.md shows every picture of docs/img/ (a new figure kind gets a place there)."""
+    gallery = (ROOT / "docs" / "gallery.md").read_text()
+    missing = [p.name for p in sorted((ROOT / "docs" / "img").iterdir()) if f"img/{p.name}" not in gallery]
+    assert not missing, f"pictures of docs/img/ not on docs/gallery.md: {missing}"
