@@ -41,3 +41,12 @@ def test_the_gallery_shows_every_figure_of_the_docs():
     gallery = (ROOT / "docs" / "gallery.md").read_text()
     missing = [p.name for p in sorted((ROOT / "docs" / "img").iterdir()) if f"img/{p.name}" not in gallery]
     assert not missing, f"pictures of docs/img/ not on docs/gallery.md: {missing}"
+
+
+def test_the_readme_links_every_page():
+    """The README (the landing page and the site's home) links every page of docs/ (the API pages
+    through docs/api/index.md), so a new page is reachable from where a reader starts."""
+    readme = (ROOT / "README.md").read_text()
+    pages = [p.name for p in sorted((ROOT / "docs").glob("*.md")) if p.name != "index.md"] + ["api/index.md"]
+    missing = [p for p in pages if f"](docs/{p})" not in readme]
+    assert not missing, f"pages of docs/ the README does not link (its Documentation table): {missing}"
