@@ -45,7 +45,7 @@ BUDGET_S = 600.0
 # `make bench` runs the scripts marked True, sized so that together they take under 10 minutes on the
 # quiet 2-core machine (about 6.5 min of CPU); the others (each several minutes, or needing an extra
 # environment) run with --all or --only, and their last results are kept in docs/benchmarks.json, so
-# the README table always lists every script, each row saying when it was measured.
+# the summary table always lists every script, each row saying when it was measured.
 SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("event_solver.py", [], [], True),
     ("stick_slip.py", [], [], True),
