@@ -11,8 +11,10 @@ changes how a block is run::
     <!-- doctest: exit=N -->             the block must end with exit status N (an error example)
     <!-- doctest: render -->             needs off-screen rendering (skipped without it, unless
                                          DRIVEFEM_REQUIRE_RENDER=1)
-    <!-- doctest: continue -->           a python block run after the page's previous python block,
-                                         in the same process (a walk-through split by prose)
+    <!-- doctest: continue -->           a block run after the page's previous runnable block, in
+                                         the same sandbox: a python block after a python block in
+                                         the same process (a walk-through split by prose); after a
+                                         shell block, once that block has run (it reads its files)
     <!-- doctest: synopsis -->           a text block with the usage of every drivefem command, one
                                          line each, with all of its options (checked against the parser)
     <!-- doctest: file=PATH -->          the block is an excerpt of PATH: its lines are lines of the
@@ -70,7 +72,7 @@ class Block:
     flags: set[str] = field(default_factory=set)
     options: dict = field(default_factory=dict)
     expected: "Block | None" = None  # the output block shown after it
-    previous: "Block | None" = None  # the python block a 'continue' block follows
+    previous: "Block | None" = None  # the runnable block a 'continue' block follows
 
     @property
     def where(self) -> str:
@@ -88,13 +90,28 @@ class Block:
     def timeout(self) -> float:
         return self.options.get("timeout", SLOW_TIMEOUT if self.slow else DEFAULT_TIMEOUT)
 
+    def _joined(self) -> bool:
+        """Whether this block runs in the same process as the one before it (python after python)."""
+        return ("continue" in self.flags and self.language in PYTHON and self.previous is not None
+                and self.previous.language in PYTHON)
+
     def script(self) -> str:
-        """The python source to run: the chain of 'continue' blocks up to this one."""
-        parts, block = [], self
-        while block is not None:
+        """The python source to run: the chain of python 'continue' blocks up to this one."""
+        parts, block = [self.code], self
+        while block._joined():
+            block = block.previous
             parts.append(block.code)
-            block = block.previous if "continue" in block.flags else None
         return "\n".join(reversed(parts))
+
+    def setup(self) -> "list[Block]":
+        """The blocks to run before this one in its sandbox, first to last: a 'continue' block after
+        a shell block needs that block (and what that one needs) run first."""
+        first = self
+        while first._joined():
+            first = first.previous
+        if "continue" not in first.flags or first.previous is None:
+            return []
+        return first.previous.setup() + [first.previous]
 
 
 def doc_files() -> list[Path]:
@@ -163,7 +180,7 @@ def parse(path: Path) -> tuple[list[Block], list[str]]:
         blocks.append(Block(path, i + 1, language, textwrap.dedent("\n".join(body)) + "\n", directive,
                             skip, flags, options))
         i = j + 1
-    last_runnable = last_python = None
+    last_runnable = None
     for b in blocks:
         where = f"{rel}:{b.line}"
         if not b.language:
@@ -179,14 +196,13 @@ def parse(path: Path) -> tuple[list[Block], list[str]]:
             else:
                 last_runnable.expected = b
         if "continue" in b.flags:
-            if b.language not in PYTHON or last_python is None:
-                problems.append(f"{where}: 'continue' joins a python block to the page's previous python block")
+            if not b.runnable or last_runnable is None or last_runnable.skip:
+                problems.append(f"{where}: 'continue' runs a block after the page's previous runnable "
+                                "block (not skipped)")
             else:
-                b.previous = last_python
+                b.previous = last_runnable
         if b.runnable:
             last_runnable = b
-        if b.language in PYTHON:
-            last_python = b
     return blocks, problems
 
 
@@ -203,12 +219,17 @@ def all_blocks() -> tuple[list[Block], list[str]]:
 # -- running -------------------------------------------------------------------------------------
 
 def make_sandbox(tmp: Path) -> Path:
-    """A directory that looks like the repository root: examples/ copied (blocks may write next
-    to a model file), the other top-level entries linked; .venv/bin holds the shims."""
+    """A directory that looks like the repository root: examples/ and the top-level files copied
+    (a block may write next to a model file, or over README.md: never into the checkout), the other
+    directories linked; .venv/bin holds the shims.  (A linked file would let a block's output of the
+    same name write through into the repository, as chart.png once did.)"""
     for entry in ROOT.iterdir():
         if entry.name in {".git", ".venv", "site", "examples"} or entry.name.startswith(".pytest"):
             continue
-        (tmp / entry.name).symlink_to(entry, target_is_directory=entry.is_dir())
+        if entry.is_dir():
+            (tmp / entry.name).symlink_to(entry, target_is_directory=True)
+        else:
+            shutil.copy2(entry, tmp / entry.name)
     shutil.copytree(ROOT / "examples", tmp / "examples", ignore=shutil.ignore_patterns("__pycache__"))
     bin_dir = tmp / ".venv" / "bin"
     bin_dir.mkdir(parents=True)
@@ -221,6 +242,17 @@ def make_sandbox(tmp: Path) -> Path:
         shim.write_text(f"#!/bin/sh\n{line}\n")
         shim.chmod(0o755)
     return tmp
+
+
+def repository_changes() -> set[str]:
+    """``git status`` of the checkout, one entry per changed or new file (ignored files aside): a
+    block that writes through a linked directory into the repository shows up here."""
+    try:
+        out = subprocess.run(["git", "status", "--porcelain", "--untracked-files=all"], cwd=ROOT,
+                             capture_output=True, text=True, timeout=60)
+    except (OSError, subprocess.TimeoutExpired):
+        return set()
+    return set(out.stdout.splitlines()) if out.returncode == 0 else set()
 
 
 def environment(sandbox: Path) -> dict:

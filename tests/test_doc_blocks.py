@@ -32,6 +32,12 @@ def test_doc_block_runs(block, tmp_path):
         if not ok:
             pytest.skip(f"off-screen rendering unavailable: {why}")
     sandbox = db.make_sandbox(tmp_path)
+    repository_before = db.repository_changes()
+    for before in block.setup():             # 'continue' after a shell block: that block first
+        done = db.run(before, sandbox)
+        assert done.returncode == before.options.get("exit", 0), (
+            f"{block.where}: the block it continues, {before.where}, ended with exit status "
+            f"{done.returncode}\n--- output ---\n{done.stdout}")
     result = db.run(block, sandbox)
     want = block.options.get("exit", 0)
     assert result.returncode == want, (
@@ -41,6 +47,9 @@ def test_doc_block_runs(block, tmp_path):
         f"{block.where}: a traceback in the output\n{result.stdout}")
     if block.expected is not None:
         db.check_output(block.expected, result.stdout)
+    written = sorted(db.repository_changes() - repository_before)
+    assert not written, (f"{block.where}: the block wrote into the repository, not into its sandbox "
+                         f"(write outputs to the working directory): {written}")
 
 
 @pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if b.language == "toml"])
