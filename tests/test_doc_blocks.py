@@ -94,14 +94,29 @@ def test_the_checker_catches_drift(tmp_path):
         db.ROOT = root
 
 
-def _cli_options() -> dict[str, set[str]]:
-    """{command: its option strings} from the command line's own parser."""
+def _cli_parsers() -> dict:
+    """{command: its parser}, from the command line's own parser."""
     import argparse
 
     from fem.app.cli import build_parser
     parser = build_parser()
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    return {name: {s for a in p._actions for s in a.option_strings} for name, p in sub.choices.items()}
+    return dict(sub.choices)
+
+
+def _cli_options() -> dict[str, set[str]]:
+    """{command: its option strings}, old spellings included."""
+    return {name: {s for a in p._actions for s in a.option_strings} for name, p in _cli_parsers().items()}
+
+
+def _old_spellings() -> dict[str, dict[str, str]]:
+    """{command: {old spelling: what to write instead}}: the options hidden from ``--help``
+    (``help=argparse.SUPPRESS``), which the command line keeps for old scripts with a deprecation
+    message (fem/app/options.py); the docs show the current spelling only."""
+    import argparse
+    return {name: {s: str(getattr(a, "new", "the current option of --help")) for a in p._actions
+                   if a.help == argparse.SUPPRESS for s in a.option_strings}
+            for name, p in _cli_parsers().items()}
 
 
 def test_command_lines_shown_in_the_docs_exist():
@@ -109,7 +124,7 @@ def test_command_lines_shown_in_the_docs_exist():
     which is not run) that starts with ``drivefem COMMAND`` names a real command and only options
     it accepts (the command line's own parser)."""
     import re
-    options = _cli_options()
+    options, old = _cli_options(), _old_spellings()
     wrong = []
     for b in BLOCKS:
         lines = [ln for ln in b.code.splitlines() if ln.strip()]
@@ -127,15 +142,20 @@ def test_command_lines_shown_in_the_docs_exist():
             for flag in re.findall(r"(?<![\w-])--[a-z][\w-]*", rest):
                 if flag not in options[command]:
                     wrong.append(f"{b.where}: 'drivefem {command}' has no option {flag}: {line.strip()}")
+                elif flag in old[command]:
+                    wrong.append(f"{b.where}: 'drivefem {command} {flag}' is an old spelling; write "
+                                 f"{old[command][flag]}: {line.strip()}")
     assert not wrong, "\n".join(wrong)
 
 
 @pytest.mark.parametrize("block", [_param(b) for b in BLOCKS if "synopsis" in b.flags])
 def test_synopsis_lists_every_command_and_option(block):
     """A block marked ``synopsis`` lists every command of the command line, each with all of its
-    options: a new command or option that the page does not show fails here."""
+    options (old spellings, hidden from ``--help``, left out): a new command or option that the page
+    does not show fails here."""
     import re
-    options = _cli_options()
+    options, old = _cli_options(), _old_spellings()
+    options = {c: o - set(old[c]) for c, o in options.items()}
     shown = {}
     for line in block.code.splitlines():
         m = re.match(r"\s*drivefem\s+([a-z][a-z-]*)(.*)", line)

@@ -33,7 +33,9 @@ def test_every_page_is_in_the_navigation():
     pages = [p.relative_to(ROOT / "docs").as_posix() for p in (ROOT / "docs").rglob("*.md")
              if "hooks" not in p.parts]
     missing = [p for p in pages if not re.search(rf"(^|[\s:]){re.escape(p)}\s*$", nav, re.M)]
-    assert not missing, f"docs pages not in the nav of mkdocs.yml: {missing}"
+    assert not missing, (f"docs pages not in the nav of mkdocs.yml: {missing}; add each as '      - Title: PAGE' "
+                         "under its section of 'nav:' (e.g. a geared-train page under 'Nonsmooth and "
+                         "nonlinear'), and a row of the README's Documentation table")
 
 
 def test_the_gallery_shows_every_figure_of_the_docs():
