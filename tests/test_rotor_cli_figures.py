@@ -43,6 +43,7 @@ def _standards(saved, title):
     for name, rep in saved.items():
         assert rep["overlaps"] == [], f"{name}: overlapping texts {rep['overlaps']}"
         assert rep["without_unit"] == [], f"{name}: {rep['without_unit']}"
+        assert rep["without_colour_bar"] == [], f"{name}: {rep['without_colour_bar']}"
         assert any(" ".join(title.split()) in " ".join(t.split()) for t in rep["titles"]), \
             f"{name}: title {rep['titles']} lacks the model's"
 
@@ -62,6 +63,10 @@ def test_overlap_and_unit_checks_catch_bad_figures():
     rep = figure_report(fig)
     assert ("6574", "6430") in rep["overlaps"]
     assert any("x label 'speed'" in b for b in rep["without_unit"]) and any("y label ''" in b for b in rep["without_unit"])
+    ax.scatter([0, 1], [0, 1], c=[0.0, 1.0])    # colour encodes a value: needs a colour bar
+    assert figure_report(fig)["without_colour_bar"]
+    fig.colorbar(ax.collections[-1], ax=ax, label="speed [rpm]")
+    assert figure_report(fig)["without_colour_bar"] == []
 
 
 # ------------------------------------------------------------------ Campbell
@@ -104,7 +109,7 @@ def test_forced_plot_file_or_directory(tmp_path, capsys, figures):
          **{n: True for n in names if n.startswith("polar_")}}
     capsys.readouterr()
     assert main(["forced", str(JEFFCOTT), "--plot", str(tmp_path / "bode.txt")]) == 2
-    assert "a .png file (one figure) or a directory" in capsys.readouterr().err
+    assert "a figure file (.png, .svg, .pdf: the main figure) or a directory" in capsys.readouterr().err
 
 
 def test_html_outputs_and_missing_plotly(tmp_path, capsys, monkeypatch):

@@ -12,19 +12,18 @@ import numpy as np
 from .registry import CaseOutcome, run_case, select
 
 
-def run_validation(names: list[str] | None = None, include_slow: bool = True, progress: bool = True) -> list[CaseOutcome]:
+def run_validation(names: list[str] | None = None, include_slow: bool = True, progress=None) -> list[CaseOutcome]:
+    """Run the selected cases; ``progress``: called as ``progress(done, total)`` after each case (the
+    command's bar: :func:`fem.app.progress.count_bar`, whose ``note`` shows the running case)."""
     cases = select(names, include_slow=include_slow)
-    if progress:
-        from tqdm import tqdm
-
-        cases_iter = tqdm(cases, desc="validation", unit="case", file=sys.stderr, leave=False)
-    else:
-        cases_iter = cases
     out = []
-    for c in cases_iter:
-        if progress:
-            cases_iter.set_postfix_str(c.name)
+    for k, c in enumerate(cases):
+        if progress is not None:
+            getattr(progress, "note", lambda _: None)(c.name)
+            progress(k, len(cases))
         out.append(run_case(c))
+    if progress is not None:
+        progress(len(cases), len(cases))
     return out
 
 

@@ -597,8 +597,12 @@ class _Operator(spla.LinearOperator):
     shape checks and reshapes cost as much as the banded solve on a few hundred unknowns)."""
 
     def __init__(self, n: int, op):
+        self._op = op                  # before LinearOperator.__init__, which checks for a _matvec
         super().__init__(np.dtype(float), (n, n))
-        self.matvec = self._matvec = op
+        self.matvec = op
+
+    def _matvec(self, x):
+        return self._op(x)
 
 
 def _csr_matvec(A: sp.csr_matrix):

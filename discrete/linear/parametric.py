@@ -507,8 +507,9 @@ class ParametricProblem:
         return Tm @ Phi @ np.linalg.inv(Tm)
 
     # .......................................................... monodromy
-    def monodromy(self, eps, omega, *, tolerance: float = 1e-10):
-        """Monodromy matrices for a batch: (Phi (P, 2n, 2n), error_estimate (P,), n_steps (P,))."""
+    def monodromy(self, eps, omega, *, tolerance: float = 1e-10, progress=None):
+        """Monodromy matrices for a batch: (Phi (P, 2n, 2n), error_estimate (P,), n_steps (P,));
+        ``progress(k)``: called after each chunk with the k points it finished (reporting only)."""
         eps, omega = np.broadcast_arrays(np.atleast_1d(np.asarray(eps, dtype=float)),
                                          np.atleast_1d(np.asarray(omega, dtype=float)))
         eps, omega = eps.ravel().copy(), omega.ravel().copy()
@@ -526,6 +527,8 @@ class ParametricProblem:
             for start in range(0, idx.size, chunk):
                 sel = idx[start:start + chunk]
                 Phi[sel], err[sel], steps[sel] = self._converged(eps[sel], omega[sel], int(N), tolerance)
+                if progress is not None:
+                    progress(sel.size)
         if P:
             self.worst_error = max(self.worst_error, float(err.max()))
         return Phi, err, steps
@@ -888,14 +891,16 @@ def stability_chart(system, modulations=None, *, omega_min: float, omega_max: fl
                     depth_max: float, depth_min: float = 0.0, n_depth: int = 41, damping: Damping | None = None,
                     inertia_form: str = "programme", modes: int | None = None, boundaries_at=(),
                     boundary_samples: int = 401, thresholds: bool = True, tolerance: float = 1e-10,
-                    stability_margin: float = 1e-6) -> StabilityChart:
+                    stability_margin: float = 1e-6, progress=None) -> StabilityChart:
     """Scan of the (eps, Omega) plane: max |multiplier| on an n_depth x n_omega grid.
 
     ``omega_min``, ``omega_max``: rad/s (0 < min < max); ``n_omega`` >= 2; ``depth_min``,
     ``depth_max``: eps (0 <= min <= max < depth limit); ``n_depth`` >= 1; ``boundaries_at``: depths at
     which tongue edges are located by root finding (``boundary_samples`` Omega samples each);
     ``thresholds``: damping thresholds of the principal tongues whose centre 2 omega_r lies in the
-    Omega range.  Other arguments as in :func:`floquet`.
+    Omega range; ``progress``: called as ``progress(done, total)`` in steps of the work (grid
+    points, then each boundary's samples and each threshold; reporting only, the results do not
+    depend on it).  Other arguments as in :func:`floquet`.
     """
     prob = _problem(system, modulations, damping, inertia_form, modes)
     tol, margin = _tolerances(tolerance, stability_margin)
@@ -914,7 +919,16 @@ def stability_chart(system, modulations=None, *, omega_min: float, omega_max: fl
     depth = np.linspace(dmin, dmax, n_depth) if n_depth > 1 else np.array([dmin])
     om = np.linspace(lo, hi, n_omega)
     E, W = np.meshgrid(depth, om, indexing="ij")
-    Phi, err, _ = prob.monodromy(E.ravel(), W.ravel(), tolerance=tol)
+    n_thr = sum(1 for r in range(prob.omega_modes.size) if lo <= 2 * prob.omega_modes[r] <= hi) if thresholds else 0
+    total = E.size + samples * len(bdepths) + samples * n_thr
+    done = [0]
+
+    def advance(k: int) -> None:
+        if progress is not None:
+            done[0] += k
+            progress(done[0], total)
+
+    Phi, err, _ = prob.monodromy(E.ravel(), W.ravel(), tolerance=tol, progress=advance)
     rho = np.abs(np.linalg.eigvals(Phi)).max(axis=-1).reshape(E.shape)
     ref = prob.trace_integral(E.ravel(), W.ravel())
     liou = np.abs(np.linalg.slogdet(Phi)[1] - ref).reshape(E.shape)
@@ -928,7 +942,11 @@ def stability_chart(system, modulations=None, *, omega_min: float, omega_max: fl
         for r in range(1, prob.omega_modes.size + 1):
             if lo <= 2 * prob.omega_modes[r - 1] <= hi:
                 ths.append(_threshold(prob, r, tol, True))
-    bnds = [_boundaries(prob, d, lo, hi, samples, tol, margin) for d in bdepths]
+                advance(samples)
+    bnds = []
+    for d in bdepths:
+        bnds.append(_boundaries(prob, d, lo, hi, samples, tol, margin))
+        advance(samples)
     return StabilityChart(depth=depth, omega_rad_s=om, rho_max=rho, stable=rho < 1 + margin,
                           growth_rate=np.log(rho) * W / (2 * math.pi), error_estimate=err, liouville_residual=liou,
                           natural_omega_rad_s=prob.omega_modes.copy(),

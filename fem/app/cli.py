@@ -15,75 +15,78 @@ from .exit_codes import EXIT_INTERNAL, EXIT_INTERRUPTED
 
 def build_parser() -> argparse.ArgumentParser:
     """The parser, each command's function as its ``func`` default (importing the commands loads
-    numpy, scipy and scikit-fem: :func:`main` calls this inside its handlers)."""
+    numpy, scipy and scikit-fem: :func:`main` calls this inside its handlers).  The output options
+    follow one convention (:mod:`fem.app.options`)."""
     from . import commands
+    from .options import add_outputs
 
     p = argparse.ArgumentParser(prog="drivefem", description="FE and lumped models of machine drives: modal, "
-                                "forced and nonsmooth time analyses, validated against the textbook.")
+                                "forced and nonsmooth time analyses, validated against the textbook.",
+                                epilog="Outputs: --json FILE, --csv FILE, --plot FILE or DIR (figures), --render DIR "
+                                "(3D pictures), --html FILE (interactive), --quiet (no progress bar); see docs/cli.md.")
     sub = p.add_subparsers(dest="command", required=True)
     m = sub.add_parser("modal", help="natural frequencies and mode shapes")
     m.add_argument("model")
     m.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
-    m.add_argument("--json", help="write the JSON result here")
-    m.add_argument("--plot", help="write a PNG line plot of the mode shapes here (FE models)")
-    m.add_argument("--vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
-    m.add_argument("--png", help="render one PNG per mode off-screen into this directory (FE models)")
-    m.add_argument("--csv", help="write the modes here: frequency and, for lumped and hybrid files, the load "
-                   "shape of every output (one row per mode)")
+    add_outputs(m, "modal", json="the modes", csv="the modes (frequency and, for lumped and hybrid files, the load "
+                "shape of every output; one row per mode)", plot=True,
+                render="one picture per mode (FE files: the deformed shaft; rotor files: the whirl of each lateral mode)",
+                old={"--png": "--render DIR"})
+    m.add_argument("--vtu", metavar="FILE.vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
     m.set_defaults(func=commands.modal)
     r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data; "
                        "rotor files: the whirl of each lateral complex mode at the [analysis] speed")
     r.add_argument("model")
     r.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
     r.add_argument("--mode", action="append", type=int, help="render only this mode number (repeatable)")
-    r.add_argument("--out", required=True, help="output directory")
+    add_outputs(r, "render", json=None, render="the mode shapes (PNG, with --gif an animation each) and their data "
+                "(modes.json, modes.csv, FE files: modes.vtu); required", old={"--out": "--render DIR"})
     r.add_argument("--gif", action="store_true", help="also write an animated GIF per mode")
-    r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=commands.render)
     f = sub.add_parser("forced", help="harmonic response, or the nonlinear amplitude-frequency curve of [steady]")
     f.add_argument("model")
-    f.add_argument("--json")
-    f.add_argument("--csv")
-    f.add_argument("--plot", help="write a PNG of the response here (rotor files: a .png file for the Bode plot, "
-                   "or a directory for the Bode plot and a polar plot per probe)")
-    f.add_argument("--html", help="rotor files: write the Bode plot as a self-contained interactive HTML file "
-                   "(needs plotly: pip install 'drivefem[html]')")
+    add_outputs(f, "forced", json="the response", csv="the response, one row per frequency (or speed)", plot=True,
+                html="the response (FRF, amplitude-frequency curve of [steady], or a rotor's Bode plot)")
     f.add_argument("--all", action="store_true", help="print every frequency")
     f.set_defaults(func=commands.forced)
     c = sub.add_parser("compare", help="a [drive] model by the discrete, transfer-matrix and continuum methods")
     c.add_argument("model")
-    c.add_argument("--json")
+    add_outputs(c, "compare", json="the comparison", quiet=False)
     c.set_defaults(func=commands.compare)
-    s = sub.add_parser("simulate", help="time simulation of a model with nonsmooth elements")
+    s = sub.add_parser("simulate", help="time simulation of a model with nonsmooth elements (rotor files: the run-up)")
     s.add_argument("model")
-    s.add_argument("--json")
-    s.add_argument("--csv")
-    s.add_argument("--png", help="directory for time plots and phase portraits")
-    s.add_argument("--h5", help="write the time history (named outputs, states, events) to this HDF5 file "
-                   "(layout drivefem.history: docs/outputs.md)")
+    add_outputs(s, "simulate", json="the run's summary (events, period, energy balance, named outputs)",
+                csv="the time history", plot=True, html="the time histories", old={"--png": "--plot DIR"})
+    s.add_argument("--h5", metavar="FILE.h5", help="write the time history (named outputs, states, events) to this "
+                   "HDF5 file (layout drivefem.history: docs/outputs.md)")
     s.set_defaults(func=commands.simulate)
     w = sub.add_parser("sweep", help="evaluate a grid of parameter points ([sweep] table) on Dask")
     w.add_argument("model")
     w.add_argument("--scheduler", help="address of an existing dask.distributed scheduler (default: local cluster)")
-    w.add_argument("--resume", help="directory of a previous sweep: points already done are not recomputed")
-    w.add_argument("--out", help="directory for the per-point results (default: next to --json or ./sweep-<model>)")
-    w.add_argument("--json", help="write the collected results here")
+    w.add_argument("--resume", metavar="DIR", help="directory of a previous sweep: points already done are not "
+                   "recomputed")
+    w.add_argument("--out", metavar="DIR", help="directory for the per-point results (default: next to --json or "
+                   "./sweep-<model>)")
+    add_outputs(w, "sweep", json="the collected results")
     w.add_argument("--workers", type=int, default=None, help="local workers (0: serial, no Dask)")
     w.set_defaults(func=commands.sweep)
     v = sub.add_parser("validate", help="run the validation catalogue")
     v.add_argument("--case", action="append", help="case or group name (repeatable)")
-    v.add_argument("--report", help="directory for the report (markdown, JSON, plots)")
-    v.add_argument("--json")
+    v.add_argument("--report", metavar="DIR", help="directory for the report (markdown, JSON, plots)")
+    add_outputs(v, "validate", json="every check (expected, computed, tolerance)")
     v.add_argument("--fast", action="store_true", help="skip the slow cases")
-    v.add_argument("--quiet", action="store_true", help="no progress bar")
     v.set_defaults(func=commands.validate)
     k = sub.add_parser("schema", help="print the JSON Schema of model files (for editors: Taplo, Even Better TOML)")
     k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive", "rotor"],
                    help="one kind of model file (default: any model file)")
-    k.add_argument("--out", help="write the schema to this file")
+    k.add_argument("--out", metavar="FILE.json", help="write the schema to this file")
     k.set_defaults(func=commands.schema)
     d = sub.add_parser("demo", help="run representative examples end to end into ./drivefem-demo/")
-    d.add_argument("--out", default="drivefem-demo")
+    d.add_argument("--out", metavar="DIR", default="drivefem-demo", help="directory for every output of the demo "
+                   "(default: ./drivefem-demo)")
+    d.add_argument("--gallery", metavar="DOCS_DIR", help="also write the gallery page of the figures drawn "
+                   "(DOCS_DIR/gallery.md, images in DOCS_DIR/img/gallery/): `drivefem demo --gallery docs`")
+    d.add_argument("--quiet", action="store_true", help="no progress bars")
     d.set_defaults(func=lambda args: commands.demo(args, main))
     from . import parametric as parametric_command
 

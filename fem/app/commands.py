@@ -14,19 +14,19 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, columns, contract, tables, write_json
+from ..output import columns, contract, tables, write_json
 from ..output.jsonio import encode
 from ..study import Study
 from .exit_codes import EXIT_INTERRUPTED
-from .progress import progress_bar
+from .progress import count_bar, progress_bar
 
 
-def _outputs(args, **options) -> None:
-    """Check every output path given on the command line before any work starts."""
-    for attr, directory in options.items():
-        value = getattr(args, attr, None)
-        if value:
-            check_output_path(value, "--" + attr.replace("_", "-"), directory=directory)
+def _outputs(args, command: str, **kinds) -> dict:
+    """Everything checked before any work starts (:func:`fem.app.options.prepare`): old spellings,
+    ``--quiet``, every output path (``attr=kind``), plotly for ``--html``."""
+    from .options import prepare
+
+    return prepare(args, command, **kinds)
 
 
 def _emit(args, command: str, study, data: dict) -> dict:
@@ -39,12 +39,12 @@ def _emit(args, command: str, study, data: dict) -> dict:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _outputs(args, json=False, plot=False, vtu=False, png=True, csv=False)
+    _outputs(args, "modal", json="json", plot="plot", vtu="mesh", render="dir", csv="csv")
     study = Study.load(args.model)
-    if (args.vtu or args.png or args.plot) and study.kind != "fe":
-        opt = "--vtu" if args.vtu else ("--png" if args.png else "--plot")
-        raise ModelError("command line", opt, getattr(args, opt[2:]), "an FE model file (mode-shape files and "
-                         f"pictures are drawn for [[segment]] models; this is a {study.kind} model)")
+    if (args.vtu or args.render or args.plot) and study.kind != "fe":
+        opt = "--vtu" if args.vtu else ("--render" if args.render else "--plot")
+        raise ModelError("command line", opt, getattr(args, opt[2:]), "an FE or rotor model file (mode-shape files "
+                         f"and pictures are drawn for [[segment]] and [rotor] models; this is a {study.kind} model)")
     res = study.modal(args.modes)
     data = contract.modal_data(study, res)
     if study.kind in ("lumped", "hybrid"):
@@ -73,12 +73,14 @@ def modal(args) -> int:
     if args.plot:
         from ..output.figures import plot_mode_shapes
 
-        print(f"wrote {plot_mode_shapes(study.fe_model, res, args.plot)}")
-    if args.png:
+        print(f"wrote {plot_mode_shapes(study.fe_model, res, args.plot, title=study.title)}")
+    if args.render:
         from ..render import RenderUnavailable, render_modes
 
         try:
-            for p in render_modes(study.fe_model, res, args.png):
+            with count_bar("render", "images") as update:
+                written = render_modes(study.fe_model, res, args.render, progress=update)
+            for p in written:
                 print(f"wrote {p}")
         except RenderUnavailable as exc:
             print(f"warning: no images: {exc}", file=sys.stderr)
@@ -98,10 +100,7 @@ def _dunkerley(study) -> float | None:
 
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
-    _outputs(args, json=False, csv=False, plot=False)
-    if getattr(args, "html", None):
-        raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
-                         "unbalance response); for this model use --plot")
+    given = _outputs(args, "forced", json="json", csv="csv", plot="plot", html="html")
     study = Study.load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range
@@ -131,13 +130,21 @@ def forced(args) -> int:
     if args.plot:
         from ..output.figures import plot_afc, plot_frf, plot_output_amplitudes
 
+        one, folder = given["plot"]
+        if folder is not None:
+            folder.mkdir(parents=True, exist_ok=True)
+        main = one or folder / ("afc.png" if steady else "frf.png")
         if steady:
-            plot_afc(res, args.plot)
-            print(f"wrote {args.plot}")
+            plot_afc(res, main, title=study.title)
+            print(f"wrote {main}")
         else:
-            print(f"wrote {plot_frf(res, args.plot, study.title)}")
-        if loads is not None and not isinstance(loads, dict) and loads.channels:
-            print(f"wrote {plot_output_amplitudes(loads, _beside(args.plot, 'loads'), study.title)}")
+            print(f"wrote {plot_frf(res, main, study.title)}")
+        if folder is not None and loads is not None and not isinstance(loads, dict) and loads.channels:
+            print(f"wrote {plot_output_amplitudes(loads, folder / 'loads.png', study.title)}")
+    if args.html:
+        from ..output.html import afc_html, frf_html
+
+        print(f"wrote {(afc_html if steady else frf_html)(res, args.html, title=study.title)}")
     if steady and res.stop_cause == "interrupted":
         print(f"continuation {res.reason}", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -149,7 +156,7 @@ def forced(args) -> int:
 
 # ------------------------------------------------------------- compare
 def compare(args) -> int:
-    _outputs(args, json=False)
+    _outputs(args, "compare", json="json")
     study = Study.load(args.model)
     if study.kind != "drive":
         raise ModelError(str(args.model), "drive", None, "a model file with a [drive] table (drive of regular structure)")
@@ -161,7 +168,7 @@ def compare(args) -> int:
 
 # ------------------------------------------------------------- simulate
 def simulate(args) -> int:
-    _outputs(args, json=False, csv=False, png=True, h5=False)
+    _outputs(args, "simulate", json="json", csv="csv", plot="plot", h5="h5", html="html")
     study = Study.load(args.model)
     if study.kind not in ("lumped", "hybrid"):
         raise ModelError(str(args.model), "simulation", None, "a lumped or hybrid model file with a [simulation] table "
@@ -203,15 +210,19 @@ def simulate(args) -> int:
                       energy=(solver.energy[sel], solver.work[sel]) if has_e else None, events=solver.events,
                       record_every=every, n_recorded=solver.t.size)
         print(f"wrote {args.h5}")
-    if args.png:
+    if args.plot:
         from ..output.figures import plot_hybrid, plot_time_history
 
         if study.kind == "hybrid":
-            paths = plot_hybrid(res, args.png, outputs=outs, title=study.title)
+            paths = plot_hybrid(res, args.plot, outputs=outs, title=study.title)
         else:
-            paths = plot_time_history(res, args.png, outputs=outs, title=study.title)
+            paths = plot_time_history(res, args.plot, outputs=outs, title=study.title)
         for p in paths:
             print(f"wrote {p}")
+    if args.html:
+        from ..output.html import simulation_html
+
+        print(f"wrote {simulation_html(res, outs, args.html, title=study.title)}")
     if str(d.get("reason", "")).startswith("interrupted"):
         return EXIT_INTERRUPTED
     return 1 if d.get("stopped_early") else 0
@@ -222,17 +233,11 @@ def _solved_states(study, solver):
     return list(solver.names), solver.x, solver.v
 
 
-def _beside(path, what: str) -> Path:
-    """``<stem>_<what><suffix>`` next to ``path`` (a second figure of the same command)."""
-    p = Path(path)
-    return p.with_name(f"{p.stem}_{what}{p.suffix or '.png'}")
-
-
 # ---------------------------------------------------------------- sweep
 def sweep(args) -> int:
     from .sweep import run_sweep
 
-    _outputs(args, json=False, out=True, resume=True)
+    _outputs(args, "sweep", json="json", out="dir", resume="dir")
     return run_sweep(args.model, scheduler=args.scheduler, resume=args.resume, out=args.out, json_path=args.json,
                      workers=args.workers)
 
@@ -241,8 +246,9 @@ def sweep(args) -> int:
 def validate(args) -> int:
     from validation.report import print_table, run_validation, write_report
 
-    _outputs(args, json=False, report=True)
-    outcomes = run_validation(args.case or None, include_slow=not args.fast, progress=not args.quiet)
+    _outputs(args, "validate", json="json", report="dir")
+    with count_bar("validation", "cases") as update:
+        outcomes = run_validation(args.case or None, include_slow=not args.fast, progress=update)
     print_table(outcomes)
     data = {"cases": [c.to_dict() | {"case": o.case.name} for o in outcomes for c in o.checks],
             "errors": {o.case.name: o.error for o in outcomes if o.error},
@@ -258,13 +264,14 @@ def validate(args) -> int:
 def render(args) -> int:
     from ..render import render_study
 
-    from .progress import count_bar
-
-    _outputs(args, out=True)
+    _outputs(args, "render", render="dir")
+    if args.render is None:
+        raise ModelError("command line", "--render", None, "a directory for the pictures and their data files "
+                         "(drivefem render MODEL --render DIR)")
     study = Study.load(args.model)
     modes = [int(m) for m in args.mode] if args.mode else None
-    with count_bar("render", "images", quiet=getattr(args, "quiet", False)) as update:
-        rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes, progress=update)
+    with count_bar("render", "images") as update:
+        rep = render_study(study, args.render, n_modes=args.modes, gif=args.gif, modes=modes, progress=update)
     for p in rep.data_files + rep.images:
         print(f"wrote {p}")
     print(rep.message)
@@ -275,7 +282,7 @@ def render(args) -> int:
 def schema(args) -> int:
     from ..modelfile.load import dumps_schema
 
-    _outputs(args, out=False)
+    _outputs(args, "schema", out="json")
     text = dumps_schema(args.kind)
     if args.out:
         Path(args.out).write_text(text)
@@ -290,5 +297,6 @@ def demo(args, run_command) -> int:
     """``drivefem demo``: ``run_command`` is the command line's ``main`` (each example runs through it)."""
     from .demo import run_demo
 
-    _outputs(args, out=True)
-    return run_demo(Path(args.out), run_command)
+    _outputs(args, "demo", out="dir", gallery="dir")
+    return run_demo(Path(args.out), run_command, gallery=Path(args.gallery) if args.gallery else None,
+                    quiet=args.quiet)

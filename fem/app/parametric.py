@@ -1,4 +1,4 @@
-"""``drivefem parametric MODEL [--json F] [--png F] [--csv F]``: the parametric stability chart of a model
+"""``drivefem parametric MODEL [--json F] [--plot F] [--csv F] [--quiet]``: the parametric stability chart of a model
 file with ``[analysis] type = "parametric"`` (textbook ch. 7, Fig. 7.4): max |Floquet multiplier| over the
 (eps, Omega) grid, the tongue edges at the depths of ``boundaries_at`` and the damping thresholds eps* of
 the principal tongues.  Exit codes as for every command (0 done, 2 bad input, 4 solver failure)."""
@@ -8,7 +8,7 @@ import sys
 
 import numpy as np
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import contract, write_csv, write_json
 from ..output.jsonio import encode
 
 
@@ -17,9 +17,10 @@ def add_parser(subparsers) -> None:
     p = subparsers.add_parser("parametric", help="parametric stability chart (Floquet multipliers over depth and "
                               "excitation frequency) of [analysis] type = \"parametric\"")
     p.add_argument("model")
-    p.add_argument("--json", help="write the JSON chart here (schema drivefem.parametric)")
-    p.add_argument("--png", help="write the PNG chart here (tongues shaded, edges and damping thresholds marked)")
-    p.add_argument("--csv", help="write the grid here, one row per (depth, Omega) point")
+    from .options import add_outputs
+
+    add_outputs(p, "parametric", json="the chart (schema drivefem.parametric)",
+                csv="the grid, one row per (depth, Omega) point", plot=True, old={"--png": "--plot FILE"})
     p.set_defaults(func=parametric)
 
 
@@ -27,11 +28,13 @@ def parametric(args) -> int:
     from ..modelfile.build.parametric import run
     from ..study import Study
 
-    for opt in ("json", "png", "csv"):
-        if getattr(args, opt, None):
-            check_output_path(getattr(args, opt), "--" + opt)
+    from .options import prepare
+    from .progress import count_bar
+
+    prepare(args, "parametric", json="json", plot="plot", csv="csv")
     study = Study.load(args.model)
-    spec, chart = run(study)
+    with count_bar("parametric", "points") as update:
+        spec, chart = run(study, progress=update)
     data = contract.parametric_data(study, spec, chart)
     doc = encode(contract.payload("parametric", study, data))
     if args.json:
@@ -41,10 +44,12 @@ def parametric(args) -> int:
     if args.csv:
         write_csv(args.csv, *grid_columns(chart))
         print(f"wrote {args.csv}")
-    if args.png:
+    if args.plot:
         from ..output.figures.parametric import plot_stability_chart
 
-        print(f"wrote {plot_stability_chart(chart, args.png, title=_figure_title(study.title, spec))}")
+        drawn = plot_stability_chart(chart, args.plot, title=_figure_title(study.title, spec),
+                                     normalise=spec.omega_unit != "rad/s")
+        print(f"wrote {drawn}")
     for w in chart.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0

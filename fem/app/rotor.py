@@ -37,14 +37,10 @@ def add_parser(subparsers) -> None:
     p.add_argument("model")
     p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
                    "[analysis] modes or 6)")
-    p.add_argument("--json", help="write the JSON diagram here (schema drivefem.campbell)")
-    p.add_argument("--plot", help="write the PNG diagram here (excitation lines, critical speeds and backward "
-                   "crossings apart, operating range, log decrement)")
-    p.add_argument("--png", help="the same as --plot (older spelling)")
-    p.add_argument("--csv", help="write the diagram here, one row per speed")
-    p.add_argument("--html", help="write the diagram as a self-contained interactive HTML file (needs plotly: "
-                   "pip install 'drivefem[html]')")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    from .options import add_outputs
+
+    add_outputs(p, "campbell", json="the diagram (schema drivefem.campbell)", csv="the diagram, one row per speed",
+                plot=True, html="the diagram", old={"--png": "--plot FILE"})
     p.set_defaults(func=campbell)
     for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
@@ -72,11 +68,11 @@ def is_rotor_file(path) -> bool:
         return False            # the other command reports the unreadable file
 
 
-def _check_outputs(args, **options) -> None:
-    for attr, directory in options.items():
-        value = getattr(args, attr, None)
-        if value:
-            check_output_path(value, "--" + attr, directory=directory)
+def _check_outputs(args, command: str, **kinds) -> dict:
+    """Everything checked before any work starts (:func:`fem.app.options.prepare`)."""
+    from .options import prepare
+
+    return prepare(args, command, **kinds)
 
 
 def _emit(args, command: str, study, data: dict) -> dict:
@@ -109,9 +105,9 @@ def _rub_records(study) -> list | None:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False, plot=False, png=True, csv=False)
+    _check_outputs(args, "modal", json="json", plot="plot", render="dir", csv="csv", vtu="mesh")
     if getattr(args, "vtu", None):
-        raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --png (3D whirl "
+        raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --render (3D whirl "
                          "pictures) for a rotor model file")
     study = _load(args.model)
     _linear_note(study)
@@ -129,22 +125,24 @@ def modal(args) -> int:
 
         flexible = [r for r in range(res.n_modes) if not res.rigid[r] and res.kind[r] == "lateral"]
         if flexible:
-            print(f"wrote {plot_mode_orbits(res, flexible[0], args.plot)}")
+            print(f"wrote {plot_mode_orbits(res, flexible[0], args.plot, title=study.title)}")
         else:
             print("warning: no lateral flexible mode: no orbit plot", file=sys.stderr)
-    if args.png:
+    if args.render:
         from pathlib import Path
 
         from ..render import RenderUnavailable
         from ..rotor.render import render_whirl
+        from .progress import count_bar
 
-        out = Path(args.png)
+        out = Path(args.render)
         out.mkdir(parents=True, exist_ok=True)
+        picks = [r for r in range(res.n_modes) if not res.rigid[r] and res.kind[r] == "lateral"]  # whirl to draw
         try:
-            for r in range(res.n_modes):
-                if res.rigid[r] or res.kind[r] != "lateral":      # axial and torsion modes: no whirl to draw
-                    continue
-                print(f"wrote {render_whirl(study.rotor, res, r, out / f'mode_{r + 1}_{res.whirl[r]}.png')}")
+            with count_bar("render", "images") as update:
+                for k, r in enumerate(picks):
+                    print(f"wrote {render_whirl(study.rotor, res, r, out / f'mode_{r + 1}_{res.whirl[r]}.png', title=study.title)}")
+                    update(k + 1, len(picks))
         except RenderUnavailable as exc:
             print(f"warning: no images: {exc}", file=sys.stderr)
             return 5
@@ -176,23 +174,6 @@ def modal_table(study, res, out=None) -> None:
 
 
 # --------------------------------------------------------------- forced
-IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
-
-
-def figure_target(path, option: str = "--plot"):
-    """(file, None) for a path with an image suffix (one figure), else (None, directory) for several."""
-    from pathlib import Path
-
-    p = Path(path)
-    if p.suffix.lower() in IMAGE_SUFFIXES:
-        return p, None
-    if p.suffix:
-        raise ModelError("command line", option, str(path), "a .png file (one figure) or a directory without a suffix "
-                         "(every figure of the command)")
-    p.mkdir(parents=True, exist_ok=True)
-    return None, p
-
-
 def _file_name(text: str) -> str:
     import re
 
@@ -200,11 +181,7 @@ def _file_name(text: str) -> str:
 
 
 def forced(args) -> int:
-    _check_outputs(args, json=False, csv=False, plot=False, html=False)
-    if getattr(args, "html", None):
-        from ..output.html import require_plotly
-
-        require_plotly("--html")
+    given = _check_outputs(args, "forced", json="json", csv="csv", plot="plot", html="html")
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
@@ -219,7 +196,9 @@ def forced(args) -> int:
     if args.plot:
         from ..rotor.plots import plot_bode, plot_polar, probe_label
 
-        one, folder = figure_target(args.plot)
+        one, folder = given["plot"]
+        if folder is not None:
+            folder.mkdir(parents=True, exist_ok=True)
         if one is not None:
             print(f"wrote {plot_bode(res, one, title=study.title)}")
         else:
@@ -288,11 +267,7 @@ def response_columns(res, loads=None) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
-    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
-    if getattr(args, "html", None):
-        from ..output.html import require_plotly
-
-        require_plotly("--html")
+    _check_outputs(args, "campbell", json="json", plot="plot", csv="csv", html="html")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
@@ -302,7 +277,7 @@ def campbell(args) -> int:
     from .progress import count_bar
 
     op = operating_range(study.doc)
-    with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
+    with count_bar("campbell", "solves") as update:
         camp = study.campbell(args.modes, progress=update)
     loads = study.outputs(camp)
     data = contract.with_outputs(contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)}, loads)
@@ -313,7 +288,7 @@ def campbell(args) -> int:
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp, loads))
         print(f"wrote {args.csv}")
-    figure = getattr(args, "plot", None) or args.png
+    figure = args.plot
     if figure:
         from ..rotor.plots import plot_campbell
 
@@ -378,7 +353,7 @@ def campbell_columns(camp, loads=None) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True, h5=False)
+    _check_outputs(args, "simulate", json="json", csv="csv", plot="plot", h5="h5", html="html")
     from .progress import progress_bar
 
     study = _load(args.model)
@@ -399,16 +374,16 @@ def simulate(args) -> int:
         print(f"wrote {args.csv}")
     if getattr(args, "h5", None):
         print(f"wrote {_run_up_h5(study, res, outs, args.h5)}")
-    if args.png:
+    if args.plot:
         from pathlib import Path
 
         from ..rotor.plots import plot_run_up, plot_run_up_orbits
 
-        out = Path(args.png)
+        out = Path(args.plot)
         out.mkdir(parents=True, exist_ok=True)
         print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
-        print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+        print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k, title=study.title)}")
         if outs.channels:
             from ..output.figures import plot_loads
 
@@ -420,9 +395,13 @@ def simulate(args) -> int:
 
             cas, onset = whirl
             print(f"wrote {plot_cascade(cas, out / 'cascade.png', onset=onset, title=study.title)}")
-            print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png')}")
+            print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png', title=study.title)}")
         for p in _run_up_spectra(study, res, out, cascade_done=whirl is not None):
             print(f"wrote {p}")
+    if getattr(args, "html", None):
+        from ..output.html import simulation_html
+
+        print(f"wrote {simulation_html(res, outs, args.html, title=study.title)}")
     return 1 if doc.get("stopped") else 0
 
 

@@ -25,6 +25,8 @@ from .rotor import RPM, _check_outputs, _emit, _linear_note, _load
 
 
 def add_parser(subparsers) -> None:
+    from .options import add_outputs
+
     for name, helptext, func in (
             ("static", "static sag of a [rotor] file under gravity and the bearing loads ([static])", static),
             ("critical-map", "undamped critical speed map of a [rotor] file with its own bearings overlaid "
@@ -33,11 +35,7 @@ def add_parser(subparsers) -> None:
              stability)):
         p = subparsers.add_parser(name, help=helptext)
         p.add_argument("model")
-        p.add_argument("--json", help="write the JSON result here")
-        p.add_argument("--csv", help="write the result's table here")
-        p.add_argument("--plot", help="write the PNG figure here")
-        if name == "stability":
-            p.add_argument("--quiet", action="store_true", help="no progress bar")
+        add_outputs(p, name, json="the result", csv="the result's table", plot=True)
         p.set_defaults(func=func)
 
 
@@ -59,7 +57,7 @@ def static(args) -> int:
     from ..modelfile.build.rotor import static_spec
     from ..rotor import static_deflection
 
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, "static", json="json", csv="csv", plot="plot")
     study = _rotor_study(args)
     spec = static_spec(study.doc)
     res = static_deflection(study.rotor, **spec)
@@ -113,7 +111,7 @@ def critical_map(args) -> int:
     from ..rotor import critical_speed_map
     from ..rotor.critical_map import bearing_overlay, forward_columns, merge_identical
 
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, "critical-map", json="json", csv="csv", plot="plot")
     study = _rotor_study(args)
     import dataclasses
 
@@ -188,7 +186,7 @@ def stability(args) -> int:
     from ..rotor import stability_threshold
     from .progress import count_bar
 
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, "stability", json="json", csv="csv", plot="plot")
     study = _rotor_study(args)
     doc = study.doc
     s = stability_speeds(doc)
@@ -196,7 +194,7 @@ def stability(args) -> int:
                     else doc.campbell, None)
     op = operating_range(doc)
     spec = level1_spec(doc, op)
-    with count_bar("stability", "speeds", quiet=getattr(args, "quiet", False)) as update:
+    with count_bar("stability", "steps") as update:
         update(0, 2 if spec else 1)
         thr = stability_threshold(study.rotor, float(s[-1]), n, speed_min=float(s[0]), n_grid=int(s.size))
         update(1, 2 if spec else 1)

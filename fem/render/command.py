@@ -46,7 +46,7 @@ def render_study(study, out_dir, n_modes: int | None = None, gif: bool = False,
     rep.data_files.append(write_modal_table(res, out / "modes.csv"))
     rep.data_files.append(write_modal_table(res, out / "modes.json"))
     try:
-        rep.images = render_modes(fe, res, out, modes=modes, gif=gif)
+        rep.images = render_modes(fe, res, out, modes=modes, gif=gif, progress=progress)
         rep.rendered = True
         rep.message = f"{len(rep.images)} image(s) written"
     except RenderUnavailable as exc:

@@ -133,12 +133,14 @@ def _write_gif(fe, modal, r, kinds, path: Path) -> Path:
     return path
 
 
-def render_modes(fe, modal, out_dir, modes=None, gif: bool = False, kinds=None, prefix: str = "mode") -> list[Path]:
+def render_modes(fe, modal, out_dir, modes=None, gif: bool = False, kinds=None, prefix: str = "mode",
+                 progress=None) -> list[Path]:
     """One PNG per mode (``mode01.png`` ...) and, with ``gif``, an animated GIF per mode.
 
     ``fe``: a 1D :class:`fem.assembly.FEModel` or a 3D :class:`fem.solid.SolidModel`;
     ``modes``: 1-based mode numbers (default: all computed); ``kinds``: optional labels per
-    mode for the titles (3D models use their own classification by default).
+    mode for the titles (3D models use their own classification by default); ``progress``: called
+    as ``progress(done, total)`` after each picture.
     Raises :class:`fem.render.RenderUnavailable` if VTK cannot render here."""
     from ..output.mesh import ensure_directory
 
@@ -150,11 +152,16 @@ def render_modes(fe, modal, out_dir, modes=None, gif: bool = False, kinds=None, 
     import imageio.v2 as imageio
 
     paths = []
+    total = len(idx) * (2 if gif else 1)
     for r in idx:      # a fresh plotter per image: as fast as reusing one, and no stale camera state
         path = out / f"{prefix}{r + 1:02d}.png"
         imageio.imwrite(path, render_image(fe, modal, r, kinds))
         paths.append(path)
+        if progress is not None:
+            progress(len(paths), total)
     if gif:
         for r in idx:
             paths.append(_write_gif(fe, modal, r, kinds, out / f"{prefix}{r + 1:02d}.gif"))
+            if progress is not None:
+                progress(len(paths), total)
     return paths

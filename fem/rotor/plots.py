@@ -271,49 +271,67 @@ def _ellipse(V, W, n: int = 121):
     return (V * e).real, (W * e).real
 
 
-def plot_orbits(V, W, node_x, path, *, nodes=None, title: str = "") -> Path:
+def plot_orbits(V, W, node_x, path, *, nodes=None, title: str = "", unit: str = "m") -> Path:
     """Orbits (ellipses in the y-z plane, looking along -x) of complex amplitudes V, W at the
     shaft nodes (arrays over the nodes), with a dot at t = 0 and the whirl direction."""
     V, W, node_x = np.asarray(V), np.asarray(W), np.asarray(node_x)
     nodes = list(range(V.size)) if nodes is None else list(nodes)
     o = Orbits.of(V, W)
-    fig, ax = plt.subplots(figsize=(6, 6))
-    cmap = plt.get_cmap("viridis")
-    for k, i in enumerate(nodes):
+    fig, ax = plt.subplots(figsize=(7.2, 6.2))
+    colour = _node_colours(fig, ax, node_x[nodes])
+    for i in nodes:
         y, z = _ellipse(V[i], W[i])
-        c = cmap(k / max(len(nodes) - 1, 1))
-        fwd = o.forward[i] > o.backward[i]
-        ax.plot(y, z, color=c, lw=1.2, label=f"x = {node_x[i]:.3g} m ({'fwd' if fwd else 'bwd'})")
+        c = colour(node_x[i])
+        ax.plot(y, z, color=c, lw=1.2, ls="-" if o.forward[i] > o.backward[i] else "--")
         ax.plot(y[0], z[0], "o", color=c, ms=3)
+    ax.plot([], [], "k-", label="forward whirl")
+    ax.plot([], [], "k--", label="backward whirl")
     ax.plot(0, 0, "k+")
     ax.set_aspect("equal", "datalim")
-    ax.set_xlabel("y")
-    ax.set_ylabel("z")
-    ax.set_title(title or "orbits (spin about +x: forward = counter-clockwise)", fontsize=9)
-    if len(nodes) <= 12:
-        ax.legend(fontsize=7)
+    ax.set_xlabel(f"y [{unit}]")
+    ax.set_ylabel(f"z [{unit}]")
+    ax.set_title(_wrap((title + "\n" if title else "") + "orbits (spin about +x: forward = counter-clockwise)", 70),
+                 fontsize=9)
+    ax.legend(fontsize=7.5, loc="upper right")
     return _save(fig, path)
 
 
-def plot_mode_orbits(modes, r: int, path, *, nodes=None) -> Path:
+def _node_colours(fig, ax, node_x):
+    """One colour per shaft node from its position, with the colour bar that says so."""
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
+
+    xs = np.asarray(node_x, float)
+    norm = Normalize(float(xs.min()), float(xs.max()) if xs.max() > xs.min() else float(xs.min()) + 1.0)
+    sm = ScalarMappable(norm=norm, cmap="viridis")
+    fig.colorbar(sm, ax=ax, shrink=0.8, pad=0.02, label="position of the node along the shaft x [m]")
+    return lambda x: sm.to_rgba(x)
+
+
+def plot_mode_orbits(modes, r: int, path, *, nodes=None, title: str = "") -> Path:
     """Orbits of mode ``r`` (0-based) of a :class:`fem.rotor.modal.RotorModes` (from its
-    orbit axes: semi-axes, major-axis angle and direction of every shaft node)."""
+    orbit axes: semi-axes, major-axis angle and direction of every shaft node), normalised to the
+    largest semi-axis, coloured by the node's position (colour bar), a dot at t = 0."""
     major, minor, ang = modes.orbit_major[r], modes.orbit_minor[r], modes.orbit_angle[r]
-    fig, ax = plt.subplots(figsize=(6, 6))
-    cmap = plt.get_cmap("viridis")
+    fig, ax = plt.subplots(figsize=(7.2, 6.2))
     nodes = list(range(modes.node_x.size)) if nodes is None else list(nodes)
+    colour = _node_colours(fig, ax, modes.node_x[nodes])
+    scale = float(np.max(major[nodes])) or 1.0
     t = np.linspace(0, 2 * np.pi, 121)
-    for k, i in enumerate(nodes):
-        a, b, th = major[i], minor[i], ang[i]
+    for i in nodes:
+        a, b, th = major[i] / scale, minor[i] / scale, ang[i]
         sgn = 1.0 if modes.orbit_forward[r, i] else -1.0
         y = a * np.cos(t) * np.cos(th) - sgn * b * np.sin(t) * np.sin(th)
         z = a * np.cos(t) * np.sin(th) + sgn * b * np.sin(t) * np.cos(th)
-        ax.plot(y, z, color=cmap(k / max(len(nodes) - 1, 1)), lw=1.2)
+        ax.plot(y, z, color=colour(modes.node_x[i]), lw=1.2)
+        ax.plot(y[0], z[0], "o", color=colour(modes.node_x[i]), ms=2.5)
+    ax.plot(0, 0, "k+")
     ax.set_aspect("equal", "datalim")
-    ax.set_xlabel("y")
-    ax.set_ylabel("z")
-    ax.set_title(f"mode {r + 1}: {modes.omega_damped_rad_s[r]:.4g} rad/s, {modes.whirl[r]} whirl "
-                 f"at {modes.speed_rad_s * RPM:.0f} rev/min", fontsize=9)
+    ax.set_xlabel("y / largest semi-axis [-]")
+    ax.set_ylabel("z / largest semi-axis [-]")
+    ax.set_title(_wrap((title + "\n" if title else "") + f"mode {r + 1}: {modes.omega_damped_rad_s[r]:.4g} rad/s, "
+                       f"{modes.whirl[r]} whirl at {modes.speed_rad_s * RPM:.0f} rev/min (looking along -x; forward = "
+                       "counter-clockwise)", 70), fontsize=9)
     return _save(fig, path)
 
 
@@ -409,33 +427,38 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     """A run-up with rubs: the orbit radius at each probe against speed (rev/min), the rubs' normal
     forces below with the full annular rub intervals shaded; the clearances as dashed lines."""
     s = res.speed * RPM
-    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, gridspec_kw={"height_ratios": [2, 1.2]})
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8.6, 6.5), sharex=True, gridspec_kw={"height_ratios": [2, 1.2]})
+    colours = []
     for k, x in enumerate(res.probe_x):
         name = res.probe_names[k] if k < len(getattr(res, "probe_names", [])) else ""
-        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8,
-                label=f"{name} (x = {x:g} m)" if name else f"x = {x:g} m")
-    for r in res.rubs:
-        ax.axhline(1e3 * r.clearance, color="k", ls="--", lw=0.8)
+        line, = ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8,
+                        label=f"{name} (x = {x:g} m)" if name else f"x = {x:g} m")
+        colours.append(line.get_color())
+    for r in res.rubs:          # a clearance only on the probe at its position, in that probe's colour
+        k = next((i for i, x in enumerate(res.probe_x) if abs(x - r.x) < 1e-12), None)
+        off = math.hypot(*r.centre)
+        where = f"{r.name}: clearance {1e3 * r.clearance:.3g} mm" + (f" about a stator offset {1e3 * off:.3g} mm"
+                                                                     if off else "")
+        if k is not None:
+            ax.axhline(1e3 * r.clearance, color=colours[k], ls="--", lw=0.9, label=where)
+        else:
+            ax.plot([], [], " ", label=where + f" (no probe at x = {r.x:g} m)")
         ax2.plot(s, r.normal_force, lw=0.8, label=r.name)
         for t0, t1 in r.full_annular:
             ax2.axvspan(*(np.interp([t0, t1], res.t, s)), color="tab:red", alpha=0.15)
     ax.set_ylabel("orbit radius [mm]")
-    ax.legend(fontsize=8)
-    ax.set_title(title or f"run-up ({res.method})")
-    if res.rubs:
-        ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8,
-                va="top")
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
+    ax.set_title(_wrap((title + "\n" if title else "") + f"run-up ({res.method})", 80), fontsize=9.5)
     if res.rubs or not res.bearings:
         ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
     else:                                   # bearings computed from their geometry: the journals' eccentricity
         for b in res.bearings:
             ax2.plot(s, b.eccentricity, lw=0.8, label=b.name)
         ax2.set_ylabel("bearing eccentricity ratio e/c [-]")
-        ax.text(0.01, 0.97, "orbit radius about the bearing centres' line (static sag included)", transform=ax.transAxes,
-                fontsize=8, va="top")
+        ax.set_ylabel("orbit radius about the bearing line [mm]\n(static sag included)")
     ax2.set_xlabel("speed [rev/min]")
     if res.rubs or res.bearings:
-        ax2.legend(fontsize=8)
+        ax2.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
     return _save(fig, path)
 
 
@@ -483,8 +506,8 @@ def plot_whirl_onset(res, onset, path, *, title: str = "") -> Path:
         ax.legend(fontsize=8)
     ax.set_xlabel("speed [rev/min]")
     ax.set_ylabel("subsynchronous whirl amplitude [µm]")
-    ax.set_title(title or f"whirl at x = {onset.probe_x:g} m: band {onset.band[0] / (2 * np.pi):.0f}-"
-                 f"{onset.band[1] / (2 * np.pi):.0f} Hz")
+    ax.set_title((title + "\n" if title else "") + f"whirl at x = {onset.probe_x:g} m: band "
+                 f"{onset.band[0] / (2 * np.pi):.0f}-{onset.band[1] / (2 * np.pi):.0f} Hz", fontsize=9.5)
     return _save(fig, path)
 
 
@@ -516,9 +539,10 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
         ax.set_ylim(-lim, lim)
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
-    axes[0].set_ylabel("z [mm]")
+        ax.set_ylabel("z [mm]")
     name = res.probe_names[probe] if probe < len(getattr(res, "probe_names", [])) else ""
-    fig.suptitle(title or f"orbits at {name + ', ' if name else ''}x = {x:g} m (last 3 revolutions)"
+    fig.suptitle((title + "\n" if title else "") + f"orbits at {name + ', ' if name else ''}x = {x:g} m (last 3 "
+                 "revolutions)" + (f"; dashed: {rub.name}'s clearance" if rub is not None else "")
                  + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)
 

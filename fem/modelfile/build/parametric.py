@@ -185,8 +185,9 @@ def parametric_spec(study) -> ParametricSpec:
                           omega_unit="rad/s" if an.omega_rad_s is not None else "omega_1", parts=parts)
 
 
-def run(study):
-    """(spec, :class:`~discrete.linear.parametric.StabilityChart`) of the file's parametric analysis."""
+def run(study, progress=None):
+    """(spec, :class:`~discrete.linear.parametric.StabilityChart`) of the file's parametric analysis;
+    ``progress(done, total)`` as the chart is computed."""
     from discrete.linear.parametric import stability_chart
 
     spec = parametric_spec(study)
@@ -195,4 +196,4 @@ def run(study):
         if not value < spec.problem.depth_limit:
             raise ModelError(where, key, value, f"a depth below {spec.problem.depth_limit:.6g}: at larger depth the "
                              "pulsating K(t) or M(t) is not positive definite during the whole period")
-    return spec, stability_chart(spec.problem, **spec.chart_kwargs())
+    return spec, stability_chart(spec.problem, **spec.chart_kwargs(), progress=progress)

@@ -21,11 +21,12 @@ def _save(fig, path) -> Path:
     return path
 
 
-def plot_cam_law(laws: dict, path, title: str = "cam law and its transfer functions") -> Path:
-    """Pi, Pi', Pi'', Pi''' against the cam angle (deg) for each {label: PiecewiseLaw} (phase laws);
+def plot_cam_law(laws: dict, path, title: str = "cam law and its transfer functions", unit: str = "m") -> Path:
+    """Pi, Pi', Pi'', Pi''' against the cam angle (deg) for each {label: PiecewiseLaw} (phase laws:
+    the follower's position in ``unit`` and its derivatives with respect to the cam angle in rad);
     knots of the first law dashed."""
     fig, axes = plt.subplots(4, 1, figsize=(7.5, 8), sharex=True)
-    names = ("Pi", "Pi'", "Pi''", "Pi'''")
+    names = (f"Pi [{unit}]", f"Pi' [{unit}/rad]", f"Pi'' [{unit}/rad^2]", f"Pi''' [{unit}/rad^3]")
     for label, law in laws.items():
         for m, ax in enumerate(axes):
             phi, val = law.sample(4001, m)          # left limit at the cycle's end
@@ -65,8 +66,8 @@ def plot_residual_factor(nu, curves: dict, path, title: str = "equivalent jump o
     for label, vals in curves.items():
         ax.plot(nu, vals, label=label)
     ax.plot(nu[nu > 0.3], 1 / (math.pi * nu[nu > 0.3]), color="0.6", ls=":", label="1/(pi nu)")
-    ax.set_xlabel("nu = Delta t / T")
-    ax.set_ylabel("ae0")
+    ax.set_xlabel("ramp duration nu = Delta t / T [-]")
+    ax.set_ylabel("equivalent jump ae0 [-]")
     ax.set_ylim(0, 1.1)
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)
@@ -81,8 +82,8 @@ def plot_accumulation(N, curves: dict, path, band=(0.96, 1.04), title: str = "ac
     if band:
         ax.axhspan(band[0], band[1], color="0.9")
     ax.axhline(1.0, color="0.5", lw=0.6)
-    ax.set_xlabel("N = k / omega0")
-    ax.set_ylabel("mu")
+    ax.set_xlabel("N = k / omega0 [-]")
+    ax.set_ylabel("accumulation factor mu [-]")
     ax.set_yscale("log")
     ax.legend(fontsize=8)
     ax.set_title(title, fontsize=9)

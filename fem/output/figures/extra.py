@@ -45,8 +45,8 @@ def plot_convergence(n_elements, errors: dict, path, orders=(2, 4), title: str =
         ax.text(n[-1], top * (n[-1] / n[0]) ** (-p), f" O(h^{p})", fontsize=8, va="center")
     ax.set_xticks(n, [f"{v:g}" for v in n])
     ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
-    ax.set_xlabel("elements")
-    ax.set_ylabel("relative error")
+    ax.set_xlabel("number of elements [-]")
+    ax.set_ylabel("relative error [-]")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
@@ -76,14 +76,15 @@ def plot_campbell(parameter, results, path, xlabel: str = "speed [rpm]", orders=
                     ax.plot(p[i] + t * (p[i + 1] - p[i]), F[i, m] + t * (F[i + 1, m] - F[i, m]), "ro", ms=5)
     ax.set_ylim(0, F.max() * 1.1)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel("f [Hz]")
+    ax.set_ylabel("frequency f [Hz]")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return _save(fig, path)
 
 
-def plot_amplitude_curve(result, path, log: bool = False, stable=None, title: str = "amplitude-frequency curve") -> Path:
+def plot_amplitude_curve(result, path, log: bool = False, stable=None, title: str = "amplitude-frequency curve",
+                         ylabel: str = "amplitude [m | rad]") -> Path:
     """Amplitude-frequency curves of a harmonic result (each output), or of any object with
     ``frequencies_hz`` and ``amplitude`` (n_freq[, n_out]); ``stable`` (bool per point)
     draws unstable points dashed (continuation results)."""
@@ -101,8 +102,8 @@ def plot_amplitude_curve(result, path, log: bool = False, stable=None, title: st
             ax.plot(np.where(~st, f, np.nan), np.where(~st, A[:, j], np.nan), "--", label=f"{names[j]} unstable")
     if log:
         ax.set_yscale("log")
-    ax.set_xlabel("f [Hz]")
-    ax.set_ylabel("amplitude")
+    ax.set_xlabel("frequency f [Hz]")
+    ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -132,8 +133,8 @@ def plot_phase_portrait(result, path, names=None, last_fraction: float = 1.0, ti
         pts = [(e.state[n]["x"], e.state[n]["v"]) for e in ev if n in e.state]
         if pts:
             ax.plot(*np.array(pts).T, "k.", ms=3)
-    ax.set_xlabel("x")
-    ax.set_ylabel("v")
+    ax.set_xlabel("displacement or angle x [m | rad]")
+    ax.set_ylabel("velocity v [m/s | rad/s]")
     ax.set_title(title + (f"  (period {result.period:.4g})" if getattr(result, "period", None) else ""), fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
@@ -152,9 +153,9 @@ def plot_time_series(result, path, names=None, velocity: bool = True, title: str
             axes[1, 0].plot(t, v, lw=1, label=n)
     for e in getattr(result, "events", [])[:2000]:
         axes[-1, 0].axvline(e.t, color="0.8", lw=0.4, zorder=0)
-    axes[0, 0].set_ylabel("x")
+    axes[0, 0].set_ylabel("x [m | rad]")
     if velocity:
-        axes[1, 0].set_ylabel("v")
+        axes[1, 0].set_ylabel("v [m/s | rad/s]")
     axes[-1, 0].set_xlabel("t [s]")
     axes[0, 0].set_title(title, fontsize=9)
     axes[0, 0].legend(fontsize=8)
@@ -173,8 +174,9 @@ def plot_solid_vs_beam(solid_modal, beam: dict, path, title: str = "3D solid vs 
     for label, (k, f) in beam.items():
         ax.plot(np.full(len(f), kinds.index(k)) + 0.12, f, next(markers), ms=6, label=label)
     ax.set_xticks(range(3), kinds)
+    ax.set_xlabel("mode family")
     ax.set_yscale("log")
-    ax.set_ylabel("f [Hz]")
+    ax.set_ylabel("frequency f [Hz]")
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")

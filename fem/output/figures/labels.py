@@ -140,11 +140,13 @@ def overlapping_texts(fig, tolerance: float = 0.5) -> list[tuple[str, str]]:
 
 
 UNIT = re.compile(r"\[[^\]]+\]")
+NUMBER = re.compile(r"^[$\s]*[-\u2212+]?(\d|\\mathdefault)")
 
 
 def axis_labels_without_unit(fig) -> list[str]:
-    """Axes (by title or index) with visible tick labels on x or y but no axis label of the form
-    ``quantity [unit]`` there (dimensionless quantities: ``[-]``)."""
+    """Axes (by title or index) with visible numeric tick labels on x or y but no axis label of the
+    form ``quantity [unit]`` there (dimensionless quantities: ``[-]``; tick labels that name
+    categories, e.g. mode families, need none)."""
     _renderer(fig)
     fig.canvas.draw()
     bad = []
@@ -153,15 +155,33 @@ def axis_labels_without_unit(fig) -> list[str]:
             continue
         for name, axis, label in (("x", ax.xaxis, ax.get_xlabel()), ("y", ax.yaxis, ax.get_ylabel())):
             ticks = [t for t in axis.get_ticklabels() if t.get_visible() and t.get_text().strip()]
-            if ticks and not UNIT.search(label or ""):
+            numeric = any(NUMBER.search(t.get_text()) for t in ticks)      # categories need no unit
+            if numeric and not UNIT.search(label or ""):
                 bad.append(f"axes {i} ({ax.get_title() or 'untitled'}): {name} label {label!r}")
+    return bad
+
+
+def colours_without_bar(fig) -> list[str]:
+    """Axes (by title or index) where colour encodes a value (an image, a mesh, points or lines
+    coloured by an array of numbers) in a figure without any colour bar."""
+    if any(getattr(ax, "_colorbar", None) is not None for ax in fig.axes):
+        return []
+    bad = []
+    for i, ax in enumerate(fig.axes):
+        for art in list(ax.collections) + list(ax.images):
+            values = art.get_array() if hasattr(art, "get_array") else None
+            if values is not None and np.size(values) > 1:
+                bad.append(f"axes {i} ({ax.get_title() or 'untitled'}): {type(art).__name__} coloured by value")
+                break
     return bad
 
 
 def figure_report(fig) -> dict:
     """What the figure standards check on a drawn figure: overlapping text pairs, axes without a
-    unit label, and the titles (axes titles and the figure's suptitle)."""
+    unit label, colour that encodes a value without a colour bar, and the titles (axes titles and
+    the figure's suptitle)."""
     titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
     if getattr(fig, "_suptitle", None) is not None and fig._suptitle.get_text():
         titles.append(fig._suptitle.get_text())
-    return {"overlaps": overlapping_texts(fig), "without_unit": axis_labels_without_unit(fig), "titles": titles}
+    return {"overlaps": overlapping_texts(fig), "without_unit": axis_labels_without_unit(fig),
+            "without_colour_bar": colours_without_bar(fig), "titles": titles}

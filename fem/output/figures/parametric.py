@@ -16,7 +16,8 @@ import numpy as np  # noqa: E402
 def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise: bool = True,
                          max_centre_labels: int = 12) -> Path:
     """Write the chart as PNG.  ``normalise``: Omega / omega_1 on the horizontal axis (as in
-    Fig. 7.4), else rad/s."""
+    Fig. 7.4; the command asks for it when the file gives ``omega_ratio``), else rad/s (the file
+    gives ``omega_rad_s``)."""
     w1 = float(chart.natural_omega_rad_s[0]) if normalise else 1.0
     x = chart.omega_rad_s / w1
     y = chart.depth
@@ -62,8 +63,9 @@ def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise:
         ax.axvline(c["omega_rad_s"] / w1, color="0.6", ls=":", lw=0.8)
     ax.set_xlim(x[0], x[-1])
     ax.set_ylim(y[0], y[-1] if y[-1] > y[0] else y[0] + 1.0)
-    ax.set_xlabel("Omega / omega_1" if normalise else "Omega [rad/s]")
-    ax.set_ylabel("depth of pulsation eps")
+    ax.set_xlabel(f"excitation frequency Omega / omega_1 [-] (omega_1 = {w1:.6g} rad/s)" if normalise
+                  else "excitation frequency Omega [rad/s]")
+    ax.set_ylabel("depth of pulsation eps [-]")
     ax.set_title(title or f"Parametric stability chart ({chart.damping})", fontsize=9, pad=42 if centres else 6)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)

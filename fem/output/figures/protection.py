@@ -20,7 +20,7 @@ def _save(fig, path) -> Path:
     return path
 
 
-def plot_amplitude_curves(x, curves: dict, path, *, xlabel: str = "omega [rad/s]", ylabel: str = "amplitude",
+def plot_amplitude_curves(x, curves: dict, path, *, xlabel: str = "omega [rad/s]", ylabel: str = "amplitude [m]",
                           marks: dict | None = None, log: bool = True, title: str = "") -> Path:
     """Several amplitude-frequency curves ({label: values}) with vertical marks ({label: x}) -- the absorber
     AFCs of Fig. 6.10, transmissibility families, the quasi-constant platform of Fig. 6.15."""

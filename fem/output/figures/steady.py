@@ -6,15 +6,20 @@ from pathlib import Path
 import numpy as np
 
 
-def plot_afc(result, path, ax=None, label=None) -> None:
-    """PNG of the curve: stable parts solid, unstable parts dashed red, folds marked."""
+def plot_afc(result, path, ax=None, label=None, title: str = "") -> None:
+    """PNG of the curve: stable branch solid, unstable branch dashed in the same colour, folds as
+    open circles, the backbone (nonlinear mode) dash-dotted.  The legend says it in words
+    ("harmonic balance, 7 harmonics: stable branch"); the axes carry quantity and unit (the
+    excitation frequency in rad/s, or as omega / omega_ref when the file gives omega_ref)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from .quantities import measure_label, method_text
+
     own = ax is None
     if own:
-        fig, ax = plt.subplots(figsize=(7, 4.5))
+        fig, ax = plt.subplots(figsize=(7.8, 4.8))
     x = result.z if result.omega_ref else result.omega
     y = result.response
     st = np.asarray(result.stable, bool)
@@ -24,25 +29,34 @@ def plot_afc(result, path, ax=None, label=None) -> None:
     for i in range(1, len(st)):
         if st[i] != st[i - 1]:
             yu[i - 1 if st[i - 1] else i] = y[i - 1 if st[i - 1] else i]
-    line, = ax.plot(x, ys, "-", lw=1.6, label=label or f"{result.method} (stable)")
-    ax.plot(x, yu, "--", color=line.get_color(), lw=1.2, alpha=0.9,
-            label=None if label else "unstable")
-    for f in result.folds:
+    name = label or method_text(result.method)
+    line, = ax.plot(x, ys, "-", lw=1.6, label=f"{name}: stable branch" if not label else label)
+    if np.any(~st):
+        ax.plot(x, yu, "--", color=line.get_color(), lw=1.2, alpha=0.9,
+                label=f"{name}: unstable branch" if not label else "_nolegend_")
+    for k, f in enumerate(result.folds):
         fx = f["omega"] / result.omega_ref if result.omega_ref else f["omega"]
-        ax.plot([fx], [f["response"]], "o", ms=4, color=line.get_color(), mfc="none")
+        ax.plot([fx], [f["response"]], "o", ms=4, color=line.get_color(), mfc="none",
+                label="fold (turning point)" if k == 0 and not label else "_nolegend_")
     bb = (result.extra or {}).get("backbone")
     if bb and bb.get("response"):
         bx = np.asarray(bb["omega_rad_s"]) / (result.omega_ref or 1.0)
         ax.plot(bx, bb["response"], "-.", color="0.35", lw=1.2,
-                label=f"backbone: nonlinear mode ({bb['method'].split(' (')[0]})")
+                label=f"backbone: {method_text(bb['method'])}")
     if own:
-        ax.set_xlabel("z = omega / omega_ref" if result.omega_ref else "omega, rad/s")
-        ax.set_ylabel(result.response_label)
+        ref = result.omega_ref
+        ax.set_xlabel(f"excitation frequency omega / omega_ref [-] (omega_ref = {ref:.6g} rad/s)" if ref
+                      else "excitation frequency omega [rad/s]")
+        q, u = measure_label(result.response_label)
+        ax.set_ylabel(f"{q} [{u}]", fontsize=8.5)
         ax.grid(alpha=0.3)
-        ax.legend()
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)   # off the curves
+        sub = "amplitude-frequency curve (continuation)" + ("" if getattr(result, "completed", True) else
+                                                              ": stopped early, partial branch")
+        ax.set_title((title + "\n" if title else "") + sub, fontsize=9)
         fig.tight_layout()
         Path(path).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=120)
+        fig.savefig(path, dpi=120, bbox_inches="tight")
         plt.close(fig)
 
 

@@ -9,6 +9,13 @@ import numpy as np
 from .loads import MARKS, plot_loads
 
 
+def _title_lines(title: str, what: str, width: int = 70) -> str:
+    """The model's title (wrapped) above what the figure shows."""
+    import textwrap
+
+    return ("\n".join(textwrap.wrap(title, width)) + "\n" if title else "") + what
+
+
 def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: str = "") -> list[pathlib.Path]:
     """Write ``time.png`` (the named outputs: element deflections and loads, reactions, events marked;
     without outputs: x and v of all DOFs), ``phase_<dof>.png`` per body (not drivers) and ``energy.png``
@@ -24,7 +31,8 @@ def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: s
     names = result.names[:max_dofs]
     head = (title + ": " if title else "") + f"{result.method}" + (f", period {result.period:.6g} s" if result.period else "")
     if outputs is not None and outputs.channels:
-        paths.append(plot_loads(outputs, out / "time.png", head, result.events))
+        speeds = [(n + (" (driven)" if n in result.driven else ""), result.v[i]) for i, n in enumerate(names)]
+        paths.append(plot_loads(outputs, out / "time.png", head, result.events, speeds=speeds))
     else:
         fig, ax = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
         for i, n in enumerate(names):
@@ -48,7 +56,7 @@ def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: s
     for i, n in enumerate(names):
         if n in result.driven:
             continue                   # prescribed motion: no phase portrait
-        fig, a = plt.subplots(figsize=(4.5, 4))
+        fig, a = plt.subplots(figsize=(5.6, 4.8))
         x, lab = result.x[i], f"{n}: x"
         if result.t.size > 2 and np.ptp(result.t) > 0:
             slope, icpt = np.polyfit(result.t, x, 1)
@@ -59,11 +67,13 @@ def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: s
                 icpt = float(np.mean(x - slope * result.t))
             drift = abs(slope) * np.ptp(result.t)
             if drift > 2 * np.ptp(x - slope * result.t):       # a drifting (driven) body: show the cycle
-                x, lab = x - (slope * result.t + icpt), f"{n}: x - ({slope:.4g} t + {icpt:.3g})"
+                x = x - (slope * result.t + icpt)
+                lab = f"{n}: x - {slope:.4g} t (mean motion removed)"
         a.plot(x, result.v[i], lw=0.8)
-        a.set_xlabel(lab + " [m | rad]")
-        a.set_ylabel(f"{n}: v [m/s | rad/s]")
-        a.set_title(f"phase portrait of {n}", fontsize=9)
+        a.locator_params(axis="x", nbins=5)          # long tick labels (-0.0004) kept apart
+        a.set_xlabel(lab + " [m | rad]", fontsize=8.5)
+        a.set_ylabel(f"{n}: velocity v [m/s | rad/s]", fontsize=8.5)
+        a.set_title(_title_lines(title, f"phase portrait of {n}"), fontsize=8.5)
         fig.tight_layout()
         p = out / f"phase_{n}.png"
         fig.savefig(p, dpi=110)
@@ -76,7 +86,7 @@ def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: s
         a.set_xlabel("time t [s]")
         a.set_ylabel("energy [J]")
         a.legend(fontsize=8)
-        a.set_title(f"energy balance, relative error {result.energy_error:.2e}", fontsize=9)
+        a.set_title(_title_lines(title, f"energy balance, relative error {result.energy_error:.2e}"), fontsize=9)
         fig.tight_layout()
         p = out / "energy.png"
         fig.savefig(p, dpi=110)
@@ -101,12 +111,17 @@ def plot_hybrid(result, out_dir, outputs=None, title: str = "") -> list[pathlib.
     prim = fe.model.fields[0]
     xs, _ = fe.nodal_values(result.field_history[0], prim)
     Z = np.array([fe.nodal_values(q, prim)[1] for q in result.field_history])
+    from .quantities import FIELD
+
+    quantity, unit = FIELD.get(prim, (prim, "m | rad"))
+    head = title or result.compiled.system.title or "hybrid model"
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    im = ax.pcolormesh(xs, result.t, Z, shading="nearest", cmap="RdBu_r")
-    fig.colorbar(im, ax=ax, label=prim)
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("t (s)")
-    ax.set_title(f"{result.compiled.system.title or 'hybrid model'}: {prim}(x, t)")
+    lim = float(np.max(np.abs(Z))) or 1.0
+    im = ax.pcolormesh(xs, result.t, Z, shading="nearest", cmap="RdBu_r", vmin=-lim, vmax=lim)
+    fig.colorbar(im, ax=ax, label=f"{quantity} [{unit}]")
+    ax.set_xlabel("x along the shaft [m]")
+    ax.set_ylabel("time t [s]")
+    ax.set_title(_title_lines(head, f"{quantity}(x, t)"), fontsize=9.5)
     p = out / "field.png"
     fig.savefig(p, dpi=110, bbox_inches="tight")
     plt.close(fig)
@@ -117,26 +132,32 @@ def plot_hybrid(result, out_dir, outputs=None, title: str = "") -> list[pathlib.
     for j in [int(j) for j in result.compiled.coupling][:6]:
         ax.plot(result.t, result.field_history[:, j], lw=1, label=sys_.label(j))
         shown += 1
+    tip = None
     if not shown:
         tip = int(np.argmax(np.where(sys_.dof_field == prim, sys_.dof_x, -np.inf)))
         ax.plot(result.t, result.field_history[:, tip], lw=1, label=sys_.label(tip))
     ev = np.array([e.t for e in result.events])
     if ev.size and ev.size < 2000:
         ax.plot(ev, 0 * ev, "k|", ms=8, label="events")
-    ax.set_xlabel("t (s)")
-    ax.legend(fontsize=7)
+    fields = sorted({FIELD.get(str(sys_.dof_field[j]), ("displacement", "m | rad")) for j in
+                     ([int(j) for j in result.compiled.coupling][:6] or [tip])})
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel(f"{' / '.join(q for q, _ in fields)} [{', '.join(u for _, u in fields)}]", fontsize=8.5)
+    ax.set_title(_title_lines(head, "the DOFs where the nonsmooth elements act"), fontsize=9.5)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, frameon=False)
     p = out / "coupling.png"
     fig.savefig(p, dpi=110, bbox_inches="tight")
     plt.close(fig)
     paths.append(p)
     if outputs is not None and outputs.channels:
-        paths.append(plot_loads(outputs, out / "loads.png", title or "hybrid model", result.events))
+        paths.append(plot_loads(outputs, out / "loads.png", head, result.events))
     s = result.solver
     fig, ax = plt.subplots(figsize=(8, 3.5))
     ax.plot(s.t, s.energy - s.energy[0], lw=1, label="E - E0")
     ax.plot(s.t, s.work, "--", lw=1, label="work of non-conservative forces")
-    ax.set_xlabel("t (s)")
-    ax.set_title(f"energy balance: error {result.energy_error:.2e}")
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("energy [J]")
+    ax.set_title(_title_lines(head, f"energy balance: error {result.energy_error:.2e}"), fontsize=9.5)
     ax.legend(fontsize=8)
     p = out / "energy.png"
     fig.savefig(p, dpi=110, bbox_inches="tight")
