@@ -1,5 +1,5 @@
 """The ``drivefem`` command line: argument parsing only; each command is one function of
-:mod:`fem.app.commands` (design.md §5, README "CLI and JSON")."""
+:mod:`fem.app.commands` (design.md §5, docs/cli.md)."""
 from __future__ import annotations
 
 import argparse

@@ -1,4 +1,4 @@
-"""The output contract: what every command's JSON holds (README "CLI and JSON").
+"""The output contract: what every command's JSON holds (docs/cli.md).
 
 Every file has ``schema`` ("drivefem.<command>"), ``version`` (:data:`SCHEMA_VERSION`), ``title``
 and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
