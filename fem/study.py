@@ -7,7 +7,10 @@ the sweeps and the validation catalogue go through (design.md §9).
 Kinds: ``fe`` (linear analyses of a shaft), ``lumped`` and ``hybrid`` (linear analyses, time
 simulation by the event-driven, Moreau-Jean or regularised integrator, nonlinear steady states),
 ``drive`` (a drive of regular structure by three representations), ``rotor`` (complex modes at a
-speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.rotor`).
+speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.rotor`), ``train`` (geared
+multi-shaft trains: complex modes, Campbell diagram, forced response over speed, time simulation with
+exact backlash and slip events, nonlinear steady states, Floquet chart of the mesh stiffness:
+:mod:`fem.train`, docs/geared.md).
 """
 from __future__ import annotations
 
@@ -28,6 +31,7 @@ from .modelfile.build import hybrid as build_hybrid
 from .modelfile.build import linear as build_linear
 from .modelfile.build import lumped as build_lumped
 from .modelfile.build import rotor as build_rotor
+from .modelfile.build import train as build_train
 from .modelfile.build.steady import steady_settings
 from .modelfile.load import kind_of
 from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
@@ -114,15 +118,30 @@ class Study:
         self._need("rotor", what="a rotor")
         return assemble_rotor(build_rotor.rotor_model(self.doc))
 
+    @cached_property
+    def train(self):
+        """The assembled train (:class:`fem.train.TrainSystem`) of a train file."""
+        from .train import assemble_train
+
+        self._need("train", what="a geared train")
+        return assemble_train(build_train.train_model(self.doc))
+
     def campbell(self, n_modes: int | None = None):
-        """Rotor files: the Campbell diagram of [campbell] with its critical speeds."""
+        """Rotor and train files: the Campbell diagram of [campbell] with its critical speeds."""
         from .rotor import campbell
 
-        self._need("rotor", what="drivefem campbell")
+        self._need("rotor", "train", what="drivefem campbell")
         t = self.doc.campbell
         if t is None:
-            raise ModelError("model file (rotor)", "campbell", None, "a table [campbell] with speeds = [..] or "
-                             "speeds_rpm = { start, stop, points } (required for drivefem campbell)")
+            raise ModelError(f"model file ({self.kind})", "campbell", None, "a table [campbell] with speeds = [..] "
+                             "or speeds_rpm = { start, stop, points } (required for drivefem campbell)")
+        if self.kind == "train":
+            from .train import train_campbell
+
+            tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+            return train_campbell(self.train, build_train.speeds(t, "[campbell]"),
+                                  build_train.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
+                                  critical=t.critical, tolerance=tol)
         speeds = build_rotor.speed_grid(t, "[campbell]")
         tol = self.analysis.tolerance if self.analysis is not None else 1e-6
         return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
@@ -138,6 +157,8 @@ class Study:
             return self.compiled.system
         if self.kind == "rotor":            # M q'' + (C + Omega G) q' + K q = f at the [analysis] speed
             return self.rotor.system_at(build_rotor.modal_speed(self.doc))
+        if self.kind == "train":            # the meshes in their linear state, at the [analysis] speed
+            return self.train.system_at(build_train.modal_speed(self.doc))
         raise ModelError("model file (drive)", "drive", "...", "the drive analyses (modal, forced, compare)")
 
     @cached_property
@@ -176,6 +197,12 @@ class Study:
             tol = self.analysis.tolerance if self.analysis is not None else 1e-6
             return rotor_modes(self.rotor, build_rotor.modal_speed(self.doc),
                                build_rotor.modes_count(self.doc, None, n_modes), tolerance=tol)
+        if self.kind == "train":
+            from .train import train_modes
+
+            tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+            return train_modes(self.train, build_train.modal_speed(self.doc),
+                               build_train.modes_count(self.doc, None, n_modes), tolerance=tol)
         from discrete.linear import modal_analysis
 
         an = self.analysis

@@ -17,6 +17,10 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   omega_1, n_omega), ``rho_max``, ``stable``, ``growth_rate_1_s``, ``error_estimate``,
   ``liouville_residual`` (n_depth x n_omega), ``natural_omega_rad_s``, ``centres``, ``thresholds``,
   ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
+* train files (kind ``train``): modal as rotor files plus ``energy_share``, ``whirl_by_shaft``,
+  ``speed_ratios``, ``mode_shapes`` (complex, every DOF with its label); campbell as rotor files plus
+  ``speed_ratios``; forced (``[forced]``) the response over speed: mesh forces, dynamic load factors,
+  bearing reactions (see docs/geared.md).
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
   shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per
@@ -47,6 +51,8 @@ def modal_data(study, res) -> dict:
         return _drive_modal(res)
     if study.kind == "rotor":
         return _rotor_modal(study, res)
+    if study.kind == "train":
+        return _train_modal(study, res)
     d = res.to_dict()
     ok = res.reliable | res.rigid
     d["omega_rad_s"] = [v if r else None for v, r in zip(res.omega_rad_s.tolist(), ok)]
@@ -184,5 +190,27 @@ def campbell_data(study, camp) -> dict:
     """The Campbell diagram of ``drivefem campbell`` (:class:`fem.rotor.CampbellResult`)."""
     d = camp.to_dict()
     d["kind_of_mode"] = d.pop("kind")          # "kind" is the file's kind in every document
-    d["n_dofs"] = study.rotor.n_dofs - int(study.rotor.constrained.size)
+    sys_ = study.train if study.kind == "train" else study.rotor
+    d["n_dofs"] = sys_.n_dofs - int(sys_.constrained.size)
+    if study.kind == "train":
+        d["speed_ratios"] = dict(study.train.ratios)
+    return d
+
+
+def _train_modal(study, res) -> dict:
+    """Complex modes of a train at a reference speed (:class:`fem.train.TrainModes`)."""
+    d = res.to_dict()
+    ok = res.reliable | res.rigid
+    n = res.n_modes
+    d["omega_rad_s_unverified"] = d["omega_rad_s"]
+    d["omega_rad_s"] = [v if r else None for v, r in zip(d["omega_rad_s"], ok)]
+    d["frequencies_hz"] = [v if r else None for v, r in zip(d["frequencies_hz"], ok)]
+    d["eigenvalues"] = res.eigenvalues
+    d.pop("eigenvalues_real", None)
+    d.pop("eigenvalues_imag", None)
+    d["rayleigh_rel_diff"] = [None] * n
+    d["precision_bound"] = [None] * n
+    ts = study.train
+    d["speed_ratios"] = dict(ts.ratios)
+    d["mode_shapes"] = {"labels": res.labels, "shapes": res.shapes.T}
     return d

@@ -1,0 +1,131 @@
+"""The commands on geared train files (kind ``train``: ``[[shaft]]``, ``[[mesh]]``, ``[[coupling]]`` or
+``[train]`` at the top level; docs/geared.md):
+
+* ``drivefem modal TRAIN [--modes N] [--json F]``: complex modes at the ``[analysis]`` speed (meshes in
+  their linear state), kind of each mode by its kinetic energy, whirl of every rotor shaft;
+* ``drivefem campbell TRAIN [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
+  ``[campbell]`` over the reference speed (each shaft at its own speed), critical speeds;
+* ``drivefem forced TRAIN``: ``[forced]`` (linear response over speed: mesh forces, dynamic load factors,
+  bearing reactions) or ``[steady]`` (the nonlinear amplitude-frequency curve by HB or shooting);
+* ``drivefem simulate TRAIN``: ``[simulation]`` with exact backlash and slip events;
+* ``drivefem parametric TRAIN``: ``[parametric]`` Floquet chart of the mesh-stiffness variation.
+
+:func:`add_parser` routes a train file here and every other file to the command it had before.  Exit
+codes as for every command."""
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+from discrete.errors import ModelError
+
+from ..output import check_output_path, contract, write_csv, write_json
+from ..output.jsonio import encode
+
+RPM = 30.0 / np.pi
+
+
+def add_parser(subparsers) -> None:
+    """Route ``modal``, ``campbell`` of train files here (the other commands follow as they are built)."""
+    for name, command in (("modal", modal), ("campbell", campbell)):
+        sp = subparsers.choices[name]
+        sp.set_defaults(func=_routed(sp.get_default("func"), command))
+
+
+def _routed(other, train_command):
+    def run(args) -> int:
+        return train_command(args) if is_train_file(args.model) else other(args)
+
+    run.__doc__ = other.__doc__
+    return run
+
+
+def is_train_file(path) -> bool:
+    """Whether the file has a top-level table of a train file (read as TOML only; validated by the command)."""
+    from ..modelfile.schema.document import TRAIN_MARKERS
+    from ..modelfile.source import read_toml
+
+    try:
+        doc = read_toml(path)
+    except ModelError:
+        return False            # the other command reports the unreadable file
+    return any(k in doc for k in TRAIN_MARKERS)
+
+
+def _check_outputs(args, **options) -> None:
+    for attr, directory in options.items():
+        value = getattr(args, attr, None)
+        if value:
+            check_output_path(value, "--" + attr, directory=directory)
+
+
+def _emit(args, command: str, study, data: dict) -> dict:
+    doc = encode(contract.payload(command, study, data))
+    if getattr(args, "json", None):
+        write_json(args.json, doc, encoded=True)
+    return doc
+
+
+def _load(path):
+    from ..study import Study
+
+    return Study.load(path)
+
+
+# ---------------------------------------------------------------- modal
+def modal(args) -> int:
+    _check_outputs(args, json=False)
+    for opt in ("vtu", "png", "plot"):
+        if getattr(args, opt, None):
+            raise ModelError("command line", "--" + opt, getattr(args, opt), "--json for a train model file (the "
+                             "figures of a train are drawn by the Python API: fem.train.plots)")
+    study = _load(args.model)
+    res = study.modal(args.modes)
+    _emit(args, "modal", study, contract.modal_data(study, res))
+    modal_table(study, res)
+    return 0 if (res.reliable | res.rigid).all() else 3
+
+
+def modal_table(study, res, out=None) -> None:
+    out = sys.stdout if out is None else out
+    ts = study.train
+    speeds = ", ".join(f"{m} {r * res.speed_rad_s * RPM:.6g}" for m, r in ts.ratios.items())
+    print(f"{study.title}\ntrain: {len(ts.blocks)} shafts, {len(ts.train.bodies)} bodies, "
+          f"{len(ts.train.connections)} connections, {ts.n_dofs - ts.constrained.size} free DOFs; reference speed "
+          f"{res.speed_rad_s:.6g} rad/s; speeds [rev/min]: {speeds}; solver: {res.method}", file=out)
+    print(f"{'mode':>4} {'omega_d [rad/s]':>15} {'f_d [Hz]':>12} {'zeta':>10} {'kind':>8} {'torsion':>8} "
+          f"{'lateral':>8} {'axial':>8} {'whirl':>9} {'residual':>9}  note", file=out)
+    for r in range(res.n_modes):
+        note = "rigid-body" if res.rigid[r] else ("" if res.reliable[r] else "NOT RELIABLE (see warnings)")
+        if res.reliable[r] or res.rigid[r]:
+            w, f = f"{res.omega_damped_rad_s[r]:15.6f}", f"{res.frequencies_hz[r]:12.6f}"
+        else:
+            w, f = f"{'--':>15}", f"{'--':>12}"
+        sh = res.energy_share[r]
+        print(f"{r + 1:4d} {w} {f} {res.damping_ratio[r]:10.5f} {res.kind[r]:>8} {sh[0]:8.3f} {sh[1]:8.3f} "
+              f"{sh[2]:8.3f} {res.whirl[r]:>9} {res.residuals[r]:9.1e}  {note}".rstrip(), file=out)
+    for w in res.warnings:
+        print(f"warning: {w}", file=out)
+
+
+# ------------------------------------------------------------- campbell
+def campbell(args) -> int:
+    from .rotor import campbell_columns, campbell_table
+
+    _check_outputs(args, json=False, png=False, csv=False)
+    study = _load(args.model)
+    camp = study.campbell(args.modes)
+    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    campbell_table(study, camp)
+    print("speed ratios: " + ", ".join(f"{m} {r:.6g}" for m, r in study.train.ratios.items()))
+    if args.csv:
+        write_csv(args.csv, *campbell_columns(camp))
+        print(f"wrote {args.csv}")
+    if args.png:
+        from ..train.plots import plot_train_campbell
+
+        print(f"wrote {plot_train_campbell(camp, args.png, title=study.title, ratios=study.train.ratios)}")
+    for w in camp.warnings:
+        print(f"drivefem: warning: {w}", file=sys.stderr)
+    return 0
