@@ -52,6 +52,8 @@ PINNED = {
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
     "two_mass_chain.toml": ["lumped-two-mass-chain"],
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
+    "geared_two_shaft_torsion.toml": ["geared-two-shaft-equivalent"],
+    "geared_ross_two_shaft.toml": ["geared-lateral-torsional-dense", "geared-lateral-torsional-ross"],
 }
 """Example file -> the validation cases that load it as their model."""
 

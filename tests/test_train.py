@@ -1,0 +1,100 @@
+"""Geared trains (fem.train, kind train): one-shaft trains equal the single-shaft files, the mesh's
+line of action, speed ratios, bad input."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from discrete.errors import ModelError
+from fem.modelfile.source import read_toml
+from fem.study import Study
+from validation.examples import EXAMPLES
+
+
+def test_one_fe_shaft_train_equals_the_fe_file_bit_for_bit():
+    fe = read_toml(EXAMPLES / "cantilever.toml")
+    doc = {"title": "t", "shaft": [{"name": "s", **{k: fe[k] for k in ("model", "material", "segment", "support",
+                                                                        "point") if k in fe}}]}
+    ts = Study.parse(doc).train
+    sys_ = Study.load(EXAMPLES / "cantilever.toml").fe_model.system
+    for a, b in ((ts.M, sys_.M), (ts.K0, sys_.K)):
+        assert (abs(a - b) > 0).nnz == 0
+    assert np.array_equal(ts.constrained, sys_.constrained)
+
+
+def test_one_rotor_train_equals_the_rotor_file_bit_for_bit():
+    rot = read_toml(EXAMPLES / "rotor_friswell_damped.toml")
+    doc = {"title": "t", "shaft": [{"name": "r", "rotor": rot["rotor"]}], "analysis": {"speed_rpm": 4000.0}}
+    st = Study.parse(doc)
+    ref = Study.load(EXAMPLES / "rotor_friswell_damped.toml")
+    ts, rs = st.train, ref.rotor
+    for a, b in ((ts.M, rs.M), (ts.K0, rs.K0), (ts.C0, rs.C0), (ts.G, rs.G)):
+        assert (abs(a - b) > 0).nnz == 0
+    m1 = st.modal(6)
+    m2 = ref.modal(6)
+    assert np.allclose(m1.eigenvalues, m2.eigenvalues, rtol=1e-9, atol=0)
+
+
+def test_speed_ratio_and_line_of_action_of_an_external_and_an_internal_pair():
+    from fem.model import PointAttachment, Segment, ShaftModel
+    from fem.sections import Material, Section
+    from fem.train import GearMesh, Port, Train, TrainBody, assemble_train
+
+    bodies = [TrainBody("a", 1.0), TrainBody("b", 2.0), TrainBody("c", 3.0)]
+    ext = GearMesh("e", (Port(body="a"), Port(body="b")), stiffness=1e8, base_radius=(0.05, 0.1))
+    inn = GearMesh("i", (Port(body="b"), Port(body="c")), stiffness=1e8, base_radius=(0.1, 0.3), internal=True)
+    ts = assemble_train(Train([], bodies, [ext, inn]))
+    assert ts.ratios == pytest.approx({"a": 1.0, "b": -0.5, "c": -0.5 / 3})
+    # the rigid rotation at the ratios leaves both meshes unstrained
+    r = np.array([ts.ratios[n] for n in "abc"])
+    assert abs(ts.K0 @ r).max() < 1e-6
+    # a loop that does not close is refused
+    bad = GearMesh("x", (Port(body="a"), Port(body="c")), stiffness=1e8, base_radius=(0.05, 0.1))
+    with pytest.raises(ModelError, match="does not close"):
+        assemble_train(Train([], bodies, [ext, inn, bad]))
+
+
+def _two_shaft(**mesh):
+    doc = read_toml(EXAMPLES / "geared_two_shaft_torsion.toml")
+    doc["mesh"][0].update(mesh)
+    return doc
+
+
+@pytest.mark.parametrize("change, key", [
+    ({"between": [{"shaft": "nope", "x": 0.8}, {"shaft": "output", "x": 0.0}]}, "shaft = 'nope'"),
+    ({"between": [{"shaft": "input", "x": 0.33}, {"shaft": "output", "x": 0.0}]}, "x = 0.33"),
+    ({"between": [{"shaft": "input", "x": 0.8}, "ground"]}, "not the ground"),
+    ({"base_radius": None}, "base_radius"),
+    ({"variation": {"fourier": [[1, 0.1, 0.0]]}}, "teeth"),
+    ({"stiffness": -1.0}, "stiffness"),
+])
+def test_bad_mesh_input_names_table_key_and_value(change, key):
+    doc = _two_shaft(**change)
+    if change.get("base_radius", 1) is None:
+        del doc["mesh"][0]["base_radius"]
+    with pytest.raises(ModelError) as exc:
+        Study.parse(doc).train
+    assert key in str(exc.value)
+
+
+def test_train_keys_of_other_kinds_are_refused_with_a_hint():
+    doc = read_toml(EXAMPLES / "geared_two_shaft_torsion.toml")
+    doc["segment"] = [{"length": 1.0, "elements": 2, "section": {"shape": "circle", "d": 0.1}}]
+    with pytest.raises(ModelError, match="shaft.segment"):
+        Study.parse(doc)
+
+
+def test_cli_modal_and_campbell_of_a_train(tmp_path):
+    from fem.app.cli import main
+    import json
+
+    out = tmp_path / "m.json"
+    assert main(["modal", str(EXAMPLES / "geared_two_shaft_torsion.toml"), "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["kind"] == "train" and len(d["omega_rad_s"]) == 6 and d["speed_ratios"]["output"] == pytest.approx(-1 / 3)
+    out = tmp_path / "c.json"
+    assert main(["campbell", str(EXAMPLES / "geared_ross_two_shaft.toml"), "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["critical_speeds"] and d["speed_ratios"]["turbine"] == pytest.approx(-328 / 23)
