@@ -165,10 +165,27 @@ class Study:
     def _lumped_system(self):
         return self.lumped.linear_system()
 
+    def compiled_train(self, eliminate_rigid: bool = False):
+        """The train's nonsmooth problem at [train] speed (:func:`fem.train.compile.compile_train`): Craig-Bampton
+        per shaft by [reduction], [[driver]] motions, [[force]] loads; ``eliminate_rigid`` for steady states."""
+        from .train.compile import compile_train
+
+        self._need("train", what="a train's nonsmooth problem")
+        key = ("_compiled_train", bool(eliminate_rigid))
+        if key not in self.__dict__:
+            ts = self.train
+            self.__dict__[key] = compile_train(ts, build_train.operating_speed(self.doc),
+                                               reduction=build_train.reduction(self.doc),
+                                               drivers=build_train.drivers(ts, self.doc),
+                                               loads=build_train.loads(ts, self.doc), eliminate_rigid=eliminate_rigid)
+        return self.__dict__[key]
+
     def problem_spec(self, t_end: float | None = None):
-        """The nonsmooth problem without its forcing frequency fixed (lumped and hybrid)."""
+        """The nonsmooth problem without its forcing frequency fixed (lumped, hybrid, train)."""
         if self.kind == "lumped":
             return build_lumped.problem_spec(self.doc, t_end)
+        if self.kind == "train":            # steady states: the free rigid-body motion eliminated
+            return self.compiled_train(eliminate_rigid=True).spec()
         self._need("hybrid", what="a nonsmooth problem")
         return self.compiled.spec()
 
@@ -317,6 +334,22 @@ class Study:
             settings["progress"] = progress
         t_end, method = settings["t_end"], settings["method"]
         spp = settings.get("steps_per_period", 12)
+        if self.kind == "train":
+            from discrete.nonsmooth import simulate_spec
+
+            from .train.simulate import TrainSimulation
+
+            comp = self.compiled_train()
+            spec = comp.spec()
+            problem = spec.problem() if method != "moreau" else None
+            if problem is not None:
+                budget.check_time_integration(t_end, problem.omega_max, spp, method)
+            if not comp.elements and not comp.forces and not comp.drivers and not np.any(comp.v0) \
+                    and not np.any(comp.x0):
+                raise ModelError("model file", "force", None, "a [[force]], [[driver]], an initial state or a "
+                                 "nonlinear connection (backlash, slip torque, stiffness variation) for a simulation")
+            res = simulate_spec(spec, t_end, method, settings, problem=problem)
+            return TrainSimulation(result=res, compiled=comp, warnings=list(comp.warnings))
         if self.kind == "hybrid":
             from .hybrid import run
 

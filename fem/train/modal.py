@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from discrete.errors import ModelError
 from discrete.linear.complex_modal import ComplexModeFigures, QuadraticEigensolver
@@ -143,6 +144,33 @@ def _rigid_once(res, n_modes: int):
                    rigid=res.rigid[idx], block=res.block[idx]), int(keep.sum())
 
 
+def _all_modes(ts: TrainSystem, speed: float, K, C, tolerance: float):
+    """Every mode of a small train (all eigenpairs of the free DOFs' linearisation, dense shift-invert):
+    for trains whose duplicate rigid-body entries the capped count of the sparse solver would cut."""
+    from discrete.linear.complex_modal import (ComplexModalResult, _dense, _normalise, _one_of_each_pair,
+                                               _residuals, _scale)
+
+    sys_ = ts.system_at(speed)
+    K = sys_.K if K is None else K
+    C = sys_.C if C is None else C
+    f = sys_.free
+    Mf, Kf = sys_.free_block(sys_.M), sp.csr_matrix(K)[f][:, f]
+    Df = sp.csr_matrix(C + speed * sys_.G)[f][:, f]
+    lam, phi, sigma = _dense(Mf, Kf, Df)
+    lam, phi = _one_of_each_pair(lam, phi)
+    level = (1e-2 * abs(sigma)) if sigma else 1e-9 * max(_scale(Mf, Kf), 1e-300)
+    rigid = np.abs(lam) <= level
+    lam = np.where(rigid, 0.0, lam)
+    order = np.lexsort((np.abs(lam.imag), np.abs(lam)))
+    lam, phi, rigid = lam[order], _normalise(phi[:, order]), rigid[order]
+    res = _residuals(Mf, Kf, Df, lam, phi)
+    shapes = np.zeros((ts.n_dofs, lam.size), complex)
+    shapes[f] = phi
+    return ComplexModalResult(eigenvalues=lam, shapes=shapes, residuals=res, rigid=rigid,
+                              block=np.zeros(lam.size, int), speed=speed, n_dofs=int(f.size),
+                              method="dense shift-invert of the linearisation (all modes)", tolerance=tolerance)
+
+
 class TrainEigen:
     """Repeated complex modal solves of one assembled train (the rotor's workspace on the train)."""
 
@@ -160,7 +188,10 @@ class TrainEigen:
             k = min(n_modes + self.extra, n_free)
             res = self.solver.solve(k, speed=speed, K=K, C=C, tolerance=tolerance)
             res, n_ok = _rigid_once(res, n_modes)
-            if n_ok >= min(n_modes, n_free) or k == n_free:
+            if n_ok >= min(n_modes, n_free):
+                break
+            if k == n_free:             # the solver's count is capped at the free DOFs: all modes densely
+                res, _ = _rigid_once(_all_modes(ts, speed, K, C, tolerance), n_modes)
                 break
             self.extra += n_modes - n_ok
         return describe(ts, res, speed)

@@ -260,3 +260,159 @@ def lateral_torsional_ross():
         out.append(check(f"ROSS two-shaft example: {lam.size} lowest eigenvalues at {rec['speed']:g} rad/s", src,
                          "max |lam - lam_ROSS| / |lam_ROSS|", 0.0, float(err.max()), 1e-8, scale=1.0))
     return out
+
+
+# ----------------------------------------------------------------------------- (d) backlash oscillator
+SRC_KS = ("Kahraman & Singh, J. Sound Vib. 142 (1990) 49: the piecewise-linear gear-pair oscillator; exact "
+          "periodic solutions by closed forms matched at the backlash boundaries (validation/analytic/backlash.py)")
+
+
+def _ks(study):
+    """The dimensionless oscillator of a two-body train with one mesh (examples/geared_rattle.toml):
+    (oscillator, omega_n, b, m_e, mesh element name)."""
+    from validation.analytic.backlash import Oscillator
+
+    ts = study.train
+    mesh = ts.train.connections[0]
+    (ra, rb), _ = mesh.radii()
+    Ia, Ib = (bd.inertia for bd in ts.train.bodies)
+    me = 1.0 / (ra * ra / Ia + rb * rb / Ib)
+    k, c, b = mesh.stiffness, mesh.damping, 0.5 * mesh.backlash
+    f = study.doc.force[0]
+    Fm, Fa = me * ra * f.value / Ia, me * ra * f.amplitude / Ia
+    wn = math.sqrt(k / me)
+    return Oscillator(zeta=c / (2 * math.sqrt(k * me)), b=1.0, Fm=Fm / (k * b), Fa=Fa / (k * b)), wn, b, mesh.name
+
+
+def ks_reference(osc):
+    """The exact jump frequencies and orbits: (fold_down, fold_up, grazing, {Omega: (branch, pattern, u)})."""
+    pat, u9 = osc.orbit_from_integration(0.9)
+    u8 = osc.continue_to(0.9, u9, pat, 0.8, step=0.001)
+    f_down, _ = osc.fold(0.8, u8, pat, "min")
+    # the middle branch: from the upper branch at 0.8 along the first segment's duration (in small steps,
+    # through the fold), then its maximum near grazing
+    d8, guess = u8[1] - u8[0], (u8, 0.8)
+    for fct in np.linspace(1.02, 1.5, 25):
+        Om, uu = osc.at_duration(d8 * fct, guess, pat)
+        guess = (uu, Om)
+    f_up, _ = osc.fold(guess[1], guess[0], pat, "max")
+    orbits = {0.85: ("upper", pat, osc.continue_to(0.9, u9, pat, 0.85, step=0.001))}
+    u, w = u9, 0.9
+    for Om in (0.95, 1.0, 1.05):
+        u = osc.continue_to(w, u, pat, Om, step=0.001)
+        w = Om
+        orbits[Om] = ("upper", pat, u)
+    return f_down, f_up, osc.grazing_frequencies(0.5, 1.5), orbits
+
+
+@case("geared-backlash-kahraman-singh", group="geared")
+def backlash_kahraman_singh():
+    """(d) Kahraman & Singh's piecewise-linear gear-pair oscillator (J. Sound Vib. 142 (1990) 49) as a train:
+    examples/geared_rattle.toml (two gears on bodies, one mesh with backlash 2b, damping always acting,
+    mean torque and a torque ripple on the pinion), in K&S's dimensionless form x'' + 2 zeta x' + f(x) =
+    F_m + F_a cos(Omega t) with zeta = 0.05, F_m = 0.1, F_a = 0.02 (x: mesh deflection / b, Omega in
+    omega_n = sqrt(k / m_e), m_e = 1/(r_a^2/I_a + r_b^2/I_b)).  The free rotation of the pair is eliminated
+    exactly (zero total momentum), the mesh deflection is the coordinate of the mesh element.
+
+    Reference (validation/analytic/backlash.py): the exact periodic orbits (closed forms per linear
+    segment, matched at x = b), their exact Floquet multipliers (products of the segments' transition
+    matrices: the force is continuous, no saltation), and the jump frequencies: the fold of the upper,
+    single-sided-impact branch (jump down on a down-sweep, a multiplier through +1) and the fold of the
+    middle branch just above the grazing frequency of the contact orbit (jump up on an up-sweep).
+    Package: the [steady] curve by HB (25 harmonics, the exact piecewise law sampled by AFT) and by
+    shooting (exact event-driven period maps), and fixed-frequency shooting and HB on the upper branch at
+    Omega = 0.85, 0.95, 1.0, 1.05.  Tolerances: shooting is exact up to the event location and Newton
+    (1e-8 on the flight duration from the located events, 1e-6 on the multipliers; the extremes 1e-7: the
+    output is sampled 2000 times per period; folds 1e-6: continuation refinement); HB-25 truncates the kinked force
+    (its error falls like H^-2 .. H^-3 for a kink: measured 2e-5 on the folds, 1e-4 on the orbit extremes)
+    -- tolerances 1e-4 (folds) and 5e-4 (extremes)."""
+    from discrete.steady import HBModel, PeriodicSystem, ShootingModel
+    from fem.modelfile.source import read_toml
+    from fem.study import Study
+
+    doc = read_toml(EXAMPLES / "geared_rattle.toml")
+    study = Study.parse(doc)
+    osc, wn, b, el_name = _ks(study)
+    f_down, f_up, grazing, orbits = ks_reference(osc)
+    out = [check("K&S oscillator: the model's dimensionless parameters", SRC_KS, "zeta, F_m, F_a (sum)",
+                 0.05 + 0.1 + 0.02, osc.zeta + osc.Fm + osc.Fa, 1e-6)]
+    # curves: HB (the example) and shooting (the same model, the range around the jumps)
+    afc_hb = study.forced()
+    doc_s = read_toml(EXAMPLES / "geared_rattle.toml")
+    doc_s["steady"].update(method="shooting", omega=[0.78 * wn, 0.93 * wn])
+    doc_s["steady"].pop("harmonics", None)
+    afc_sh = Study.parse(doc_s).forced()
+    for tag, curve, tol in (("HB-25", afc_hb, 1e-4), ("shooting", afc_sh, 1e-6)):
+        folds = sorted(f["omega"] / wn for f in curve.folds)
+        lo = min(folds, key=lambda w: abs(w - f_down)) if folds else float("nan")
+        hi = min(folds, key=lambda w: abs(w - f_up)) if folds else float("nan")
+        out.append(check(f"jump-down frequency ({tag})", SRC_KS, "Omega / omega_n (fold of the upper branch)",
+                         f_down, lo, tol))
+        out.append(check(f"jump-up frequency ({tag})", SRC_KS, "Omega / omega_n (fold near grazing)", f_up, hi, tol))
+    out.append(claim("the jump-up fold lies above the contact orbit's grazing frequency", SRC_KS,
+                     "grazing < jump-up < the upper branch's end", grazing[0] < f_up < grazing[1],
+                     note=f"grazing {grazing[0]:.6f}, jump up {f_up:.6f}, grazing {grazing[1]:.6f}"))
+    # fixed-frequency orbits on the upper branch
+    spec = study.problem_spec()
+    sh = ShootingModel(spec.problem, steps_per_period=48)
+    p0 = spec.problem(1.0)
+    hb = HBModel(PeriodicSystem(p0), harmonics=25)
+    g = p0.gf[[el.name for el in p0.elements].index(el_name)]
+    for Om, (_, pat, u) in orbits.items():
+        w = Om * wn
+        t, x, v = osc.samples(Om, u, pat)
+        xmax, xmin = float(x.max()), float(x.min())
+        mu_ref = np.sort(np.abs(osc.multipliers(Om, u, pat)))
+        # shooting from the exact orbit's state at the forcing phase 0 (the package's own Newton and period map)
+        xs, vs = _exact_at_zero(osc, Om, u, pat)
+        q0 = np.array([xs * b / g[0]])
+        qd0 = np.array([vs * b * wn / g[0]])
+        y, _ = sh.solve(np.concatenate([q0, qd0]), w, scale=np.abs(np.concatenate([q0, qd0])) + 1e-300)
+        _, res = sh.run(y, w, dense=True)
+        s_sh = (g @ res.x[p0.f]) / b
+        mu_sh = np.sort(np.abs(sh.floquet(y, w, np.abs(y) + 1e-300)))
+        out.append(check(f"Omega = {Om}: max x (shooting)", SRC_KS, "x_max (2000 samples per period)", xmax,
+                         float(s_sh.max()), 1e-7))
+        out.append(check(f"Omega = {Om}: min x (shooting)", SRC_KS, "x_min (2000 samples per period)", xmin,
+                         float(s_sh.min()), 1e-7))
+        opens = [e.t for e in res.events if e.kind == "contact_open"]
+        closes = [e.t for e in res.events if e.kind == "contact_close"]
+        if opens and closes:
+            flight = (min(c for c in closes + [c + 2 * math.pi / w for c in closes] if c > opens[0]) - opens[0]) * wn
+            T = 2 * math.pi / Om
+            exact = (u[0] + T - u[1]) if pat[0][1] == 1 else (u[1] - u[0])
+            out.append(check(f"Omega = {Om}: time out of contact per period (shooting)", SRC_KS,
+                             "flight duration (omega_n t)", exact, flight, 1e-8))
+        out.append(check(f"Omega = {Om}: Floquet multiplier (shooting)", SRC_KS, "max |mu|", mu_ref[-1], mu_sh[-1],
+                         1e-6))
+        X0 = _nearest_state(afc_hb, w)
+        X, _ = hb.solve(X0, w)
+        _, qh, _ = hb.evaluate(X, w, points=4096)
+        s_hb = (g @ qh) / b
+        out.append(check(f"Omega = {Om}: max x (HB-25)", SRC_KS, "x_max", xmax, float(s_hb.max()), 5e-4))
+        out.append(check(f"Omega = {Om}: min x (HB-25)", SRC_KS, "x_min", xmin, float(s_hb.min()), 5e-4))
+    return out
+
+
+def _exact_at_zero(osc, Om, u, pat):
+    """(x, x') of the exact orbit at t = 0 (mod the period): the shooting section of the package."""
+    T = 2 * math.pi / Om
+    m = len(pat)
+    ts = list(u[:m]) + [u[0] + T]
+    t0 = math.ceil(ts[0] / T) * T if ts[0] > 0 else 0.0
+    t0 = t0 if ts[0] <= t0 < ts[0] + T else t0 + T
+    v = u[m]
+    for i in range(m):
+        if ts[i] <= t0 < ts[i + 1]:
+            x, xd = osc.propagate(pat[i][1], Om, ts[i], pat[i][0], v, t0)
+            return float(x), float(xd)
+        v = float(osc.propagate(pat[i][1], Om, ts[i], pat[i][0], v, ts[i + 1])[1])
+    raise RuntimeError("t = 0 not inside the period")
+
+
+def _nearest_state(curve, w):
+    """The HB coefficients of the stable curve point nearest to omega = w on the upper branch (the largest
+    response among the stable points within 2 % of w)."""
+    idx = [i for i in range(curve.omega.size) if abs(curve.omega[i] / w - 1) < 0.02 and curve.stable[i]]
+    i = max(idx, key=lambda j: curve.response[j])
+    return np.asarray(curve.states[i], float)

@@ -155,3 +155,46 @@ def end_ref(ts, end, where: str) -> int:
     if end == "ground":
         raise ModelError(where, "at", end, "a body or a shaft node")
     return ts.body_dof(end, where)
+
+
+def loads(ts, doc) -> list:
+    """The [[force]] tables as :class:`fem.train.forced.TrainLoad` (order: of the member's speed)."""
+    from ...train.forced import TrainLoad
+
+    out = []
+    for i, f in enumerate(doc.force, 1):
+        where = f"[[force]] #{i}"
+        j = end_ref(ts, f.at, where)
+        member = ts.dof_member[j]
+        label = f"force{i}@{ts.label(j)}"
+        out.append(TrainLoad(dof=j, value=f.value, amplitude=f.amplitude, omega=f.omega, order=f.order,
+                             member=member, phase=f.phase, label=label))
+    return out
+
+
+def drivers(ts, doc) -> list:
+    """The [[driver]] tables as :class:`fem.train.compile.TrainDriver`."""
+    from discrete.nonsmooth import MotionLaw
+
+    from ...train.compile import TrainDriver
+
+    out = []
+    for i, d in enumerate(doc.driver, 1):
+        where = f"[[driver]] #{i}"
+        j = end_ref(ts, d.at, where)
+        if d.amplitude != 0 and d.omega == 0:
+            raise ModelError(where, "omega", d.omega, "a number > 0 with amplitude")
+        out.append(TrainDriver(dof=j, law=MotionLaw(offset=d.offset, velocity=d.velocity, amplitude=d.amplitude,
+                                                    omega=d.omega, phase=d.phase)))
+    return out
+
+
+def reduction(doc):
+    """[reduction] as :class:`fem.train.compile.ReductionSpec` (None: the full shafts)."""
+    from ...train.compile import ReductionSpec
+
+    r = doc.reduction
+    if r is None:
+        return None
+    return ReductionSpec(modes=r.modes, shaft_modes=dict(r.shaft_modes), static_correction=r.static_correction,
+                         threshold=r.threshold)

@@ -135,9 +135,9 @@ class Connection:
         """Coordinates with the (k, c) of the declared linear state."""
         return [] if self.linear_state == "open" else self.coordinates(ts)
 
-    def nonsmooth(self, ts) -> tuple[list[Coord], list[ElementPart]]:
-        """(linear remainder, elements) for the time simulation and the steady states."""
-        return self.coordinates(ts), []
+    def nonsmooth(self, ts, speed: float = 0.0) -> tuple[list[Coord], list[ElementPart], dict]:
+        """(linear remainder, elements, exogenous keys) for the time simulation and the steady states."""
+        return self.coordinates(ts), [], {}
 
     def modulations(self, ts) -> list:
         return []
