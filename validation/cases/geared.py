@@ -416,3 +416,83 @@ def _nearest_state(curve, w):
     idx = [i for i in range(curve.omega.size) if abs(curve.omega[i] / w - 1) < 0.02 and curve.stable[i]]
     i = max(idx, key=lambda j: curve.response[j])
     return np.asarray(curve.states[i], float)
+
+
+# ----------------------------------------------------------------------------- (e) textbook §11 gaps
+SRC_11 = "textbook §11.1-11.2 (digest textbook_ch10-11.md (11.1), (11.4))"
+
+
+def _gap_problem(el, A, forces=()):
+    """One unit mass on the element's coordinate s = x, started at x = A at rest."""
+    import scipy.sparse as sp_
+
+    from discrete.linear_system import LinearSystem
+    from discrete.nonsmooth import Problem
+
+    ls = LinearSystem(M=sp_.eye(1), K=sp_.csr_matrix((1, 1)), dof_field=["x"], dof_name=["q"])
+    return Problem(ls, [el], forces=list(forces), x0=np.array([A]))
+
+
+@case("geared-textbook-gap-cases", group="geared")
+def textbook_gap_cases():
+    """(e) The textbook's §11 gap cases through the mesh's element (discrete MeshContact, the law of
+    [[mesh]] backlash and of [[coupling]] backlash):
+
+    * free vibration with clearance (11.1), m = k0 = 1, started at q = A = 1 at rest, clearances [-0.1, 0.1],
+      [-0.3, 0.3], [-0.05, 0.15] (the cases of discrete_gap_exact): period 2 pi/k0 + 2 (upper - lower)/(k0 (A -
+      upper)) to 1e-10, energy conserved to 1e-10 -- by the element directly, and by a train file (a body
+      joined to the ground by a [[coupling]] with k_torsion = 1 and backlash 2 Delta, symmetric clearances);
+    * the impact excitation (11.4) of §11.2 with N = 30, delta = 0.03, s = 1e-3 (contact_11_2_impact_excitation):
+      the element with its in-contact dashpot c = 2 delta N gives the digest's contact angles (half a unit of
+      their 4th decimal), max |q| and max |q''| (half a printed digit), as the Kelvin-Voigt contact does."""
+    from discrete.nonsmooth import ExternalForce, simulate as run
+    from discrete.nonsmooth.elements import MeshContact
+    from fem.study import Study
+    from validation.analytic import gap as ref
+    from validation.analytic.contact_refs import SEC_11_2
+    from validation.registry import printed
+
+    out = []
+    for lower, upper, A in ((-0.1, 0.1, 1.0), (-0.3, 0.3, 1.0), (-0.05, 0.15, 1.0)):
+        T = ref.period(1.0, A, lower, upper)
+        tag = f"[{lower}, {upper}], A={A}"
+        r = run(_gap_problem(MeshContact("mesh", np.ones(1), k=1.0, lower=lower, upper=upper), A), 4.2 * T)
+        closes = r.event_times("contact_close")
+        out.append(check(f"mesh element: gap period ({tag})", SRC_11 + " (11.1)", "period (s)", T,
+                         closes[-1] - closes[-3], 1e-10))
+        out.append(claim(f"mesh element: energy conserved ({tag})", SRC_11, "energy_error <= 1e-10",
+                         r.energy_error <= 1e-10, note=f"{r.energy_error:.2e}"))
+        if lower == -upper:
+            doc = {"title": "gap through a coupling", "body": [{"name": "q", "inertia": 1.0, "x0": A}],
+                   "coupling": [{"name": "backlash", "between": ["q", "ground"], "k_torsion": 1.0,
+                                 "backlash": 2 * upper}],
+                   "simulation": {"t_end": 4.2 * T}}
+            res = Study.parse(doc).simulate().result
+            closes = res.event_times("contact_close")
+            out.append(check(f"train coupling backlash: gap period ({tag})", SRC_11 + " (11.1)", "period (s)", T,
+                             closes[-1] - closes[-3], 1e-10))
+    d = SEC_11_2
+    N, delta, D = d["N"], d["delta"], d["gap"] / 2
+    T = 2 * math.pi
+    el = MeshContact("mesh", np.ones(1), k=N * N, c=2 * delta * N, lower=-D, upper=D)
+    force = ExternalForce(g=np.ones(1), amplitude=1.0, omega=1.0, phase=math.pi / 2)
+    r = run(_gap_problem(el, 0.0, [force]), 39 * T)
+    p = _gap_problem(el, float(r.x[0, -1]), [force])
+    p.v0 = np.array([float(r.v[0, -1])])
+    from discrete.nonsmooth.solver import Options
+
+    r = run(p, T, Options(output_step=T / 4000))
+    for kind, angles in (("contact_open", d["opens"]), ("contact_close", d["closes"])):
+        got = r.event_times(kind)
+        for text, phi in zip(angles, got):
+            out.append(check(f"mesh element (11.4): {kind} angle {text}", SRC_11 + ": digest simulation",
+                             f"{kind} phi mod 2 pi", float(text), phi, 0.5e-4 / T, scale=T))
+        out.append(check(f"mesh element (11.4): {kind} events per period", SRC_11, "count", len(angles), got.size,
+                         0.0, scale=1.0))
+    q, v, t = r.x[0], r.v[0], r.t
+    a = np.cos(t) - (2 * delta * N * v + N * N * (q - D * np.sign(q))) * (np.abs(q) > D)
+    for key, value in (("max_displacement", np.max(np.abs(q))), ("max_acceleration", np.max(np.abs(a)))):
+        refv, tol = printed(d[key])
+        out.append(check(f"mesh element (11.4): {key.replace('_', ' ')}", SRC_11 + ": digest simulation", key,
+                         refv, value, tol))
+    return out
