@@ -54,6 +54,8 @@ PINNED = {
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
     "geared_two_shaft_torsion.toml": ["geared-two-shaft-equivalent"],
     "geared_ross_two_shaft.toml": ["geared-lateral-torsional-dense", "geared-lateral-torsional-ross"],
+    "geared_rattle.toml": ["geared-backlash-kahraman-singh"],
+    "geared_mesh_parametric.toml": ["geared-mesh-parametric-hill"],
 }
 """Example file -> the validation cases that load it as their model."""
 

@@ -28,7 +28,7 @@ RPM = 30.0 / np.pi
 
 def add_parser(subparsers) -> None:
     """Route ``modal``, ``campbell`` of train files here (the other commands follow as they are built)."""
-    for name, command in (("modal", modal), ("campbell", campbell)):
+    for name, command in (("modal", modal), ("campbell", campbell), ("parametric", parametric)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), command))
 
@@ -129,3 +129,51 @@ def campbell(args) -> int:
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
+
+
+# ------------------------------------------------------------- parametric
+def parametric(args) -> int:
+    from ..modelfile.build.train import parametric as run
+
+    _check_outputs(args, json=False, png=False, csv=False)
+    study = _load(args.model)
+    res = run(study)
+    d = res.to_dict()
+    chart = res.chart
+    d["omega_ratio"] = (chart.omega_rad_s / chart.natural_omega_rad_s[0]).tolist()
+    _emit(args, "parametric", study, d)
+    if args.json:
+        print(f"wrote {args.json}")
+    parametric_table(study, res)
+    if args.csv:
+        head = ["depth", "speed_rad_s", "tooth_pass_rad_s", "rho_max", "stable"]
+        rows = [[e, w / res.pass_per_speed, w, chart.rho_max[i, j], bool(chart.stable[i, j])]
+                for i, e in enumerate(chart.depth) for j, w in enumerate(chart.omega_rad_s)]
+        write_csv(args.csv, head, rows)
+        print(f"wrote {args.csv}")
+    if args.png:
+        from ..train.plots import plot_train_parametric
+
+        print(f"wrote {plot_train_parametric(res, args.png, title=study.title)}")
+    for w in d["warnings"]:
+        print(f"drivefem: warning: {w}", file=sys.stderr)
+    return 0
+
+
+def parametric_table(study, res, out=None) -> None:
+    out = sys.stdout if out is None else out
+    c = res.chart
+    z = res.pass_per_speed
+    print(f"{study.title}\nmesh-stiffness variation of {res.mesh!r}: tooth-pass frequency = {z:.6g} x the reference "
+          f"speed; {c.n_dofs} {'modes (projected)' if c.projected else 'DOFs'}; grid {c.depth.size} depths x "
+          f"{c.omega_rad_s.size} speeds [{c.omega_rad_s[0] / z:.6g}, {c.omega_rad_s[-1] / z:.6g}] rad/s; unstable points "
+          f"{int(np.sum(~c.stable))}", file=out)
+    print("natural frequencies of the mean train [rad/s]: " + ", ".join(f"{v:.6g}" for v in c.natural_omega_rad_s[:6]),
+          file=out)
+    for b in c.boundaries:
+        print(f"instability intervals at depth {b.depth:g}:", file=out)
+        if not len(b.omega_low_rad_s):
+            print("  none in the range", file=out)
+        for lo, hi, cen, k in zip(b.omega_low_rad_s, b.omega_high_rad_s, b.centre, b.crossing):
+            print(f"  {cen:>10}  speed ({lo / z:.6g}, {hi / z:.6g}) rad/s = ({lo / z * RPM:.6g}, {hi / z * RPM:.6g}) "
+                  f"rev/min; tooth-pass ({lo:.6g}, {hi:.6g}) rad/s; multiplier through {k}", file=out)

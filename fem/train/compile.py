@@ -153,14 +153,19 @@ def _shaft_system(ts: TrainSystem, b, speed: float) -> tuple[LinearSystem, sp.cs
 
 def compile_train(ts: TrainSystem, speed: float = 0.0, *, reduction: ReductionSpec | None = None,
                   drivers: list[TrainDriver] = (), loads: list[TrainLoad] = (),
-                  eliminate_rigid: bool = False) -> CompiledTrain:
-    """The nonsmooth problem of ``ts`` at the reference ``speed`` (see the module docstring)."""
+                  eliminate_rigid: bool = False, linear: bool = False) -> CompiledTrain:
+    """The nonsmooth problem of ``ts`` at the reference ``speed`` (see the module docstring); ``linear``: the
+    connections in their declared linear state instead (no elements, no transmission error: the Floquet
+    analysis of the mean train)."""
     speed = float(speed)
     n = ts.n_dofs
     warnings = list(ts.warnings)
     # ---------------------------------------------------------------- the connections' parts
     lin, parts, exos = [], [], []
     for c in ts.train.connections:
+        if linear:
+            lin += [(c, cd) for cd in c.linear_part(ts)]
+            continue
         lc, pc, _ = c.nonsmooth(ts, speed)
         lin += [(c, cd) for cd in lc]
         parts += [(c, p) for p in pc]

@@ -496,3 +496,54 @@ def textbook_gap_cases():
         out.append(check(f"mesh element (11.4): {key.replace('_', ' ')}", SRC_11 + ": digest simulation", key,
                          refv, value, tol))
     return out
+
+
+# ----------------------------------------------------------------------------- (c) parametric tongues
+SRC_HILL = ("Hill's determinant (validation/analytic/parametric.py hill_edges: x'' + (a h(theta)) x = 0, "
+            "multipliers +-1) with the mesh's Fourier coefficients")
+
+
+@case("geared-mesh-parametric-hill", group="geared")
+def mesh_parametric_hill():
+    """(c) Mesh-stiffness variation: the parametric tongues of a one-mesh model (examples/geared_mesh_parametric.toml:
+    two gears, m_e = 1 kg, k = 1e8 N/m, omega_n = 1e4 rad/s, 30 teeth, rectangular-wave variation of contact ratio
+    1.6 and depth 0.3, 25 Fourier terms, undamped) against Hill's determinant of the same equation
+    x'' + omega_n^2 (1 + eps w(theta)) x = 0, theta = w_m t (validation/analytic/parametric.py; the truncated
+    Fourier series of w as the Toeplitz matrix, 121 terms): every tongue edge inside 150 .. 800 rad/s of the
+    pinion (tooth-pass frequency 30 x) at depths 0.5 and 1 (1 = the declared variation).  The package locates
+    the edges by root finding on det(Phi -+ I) of Magnus monodromy matrices (tolerance 1e-10): edges agree to
+    1e-8 (measured ~1e-12; the Hill truncation's own error is below 1e-14 at 121 terms for these 25 harmonics)."""
+    from fem.study import Study
+    from validation.analytic.parametric import hill_edges
+
+    study = Study.load(EXAMPLES / "geared_mesh_parametric.toml")
+    from fem.modelfile.build.train import operating_speed
+    from fem.train.parametric import train_parametric
+
+    ts = study.train
+    mesh = ts.train.connections[0]
+    (ra, rb), _ = mesh.radii()
+    Ia, Ib = (bd.inertia for bd in ts.train.bodies)
+    wn = math.sqrt(mesh.stiffness * (ra * ra / Ia + rb * rb / Ib))
+    res = train_parametric(ts, speed=operating_speed(study.doc), speed_min=150.0, speed_max=800.0, n_speed=66,
+                           depth_min=0.0, depth_max=1.0, n_depth=3, boundaries_at=[0.5, 1.0])
+    z = res.pass_per_speed
+    L = len(mesh.variation)
+    out = [check("tooth-pass frequency per speed", "z_a |ratio_a|", "w_m / Omega", 30.0, z, 1e-15)]
+    for b in res.chart.boundaries:
+        coef = np.zeros(2 * L + 1, complex)
+        coef[L] = 1.0
+        for h, a, bb in mesh.variation:
+            coef[L + h] = b.depth * (a - 1j * bb) / 2
+            coef[L - h] = b.depth * (a + 1j * bb) / 2
+        ref_edges = np.sort(np.concatenate([hill_edges(coef, parity=p, n_terms=60, k0=wn) for p in (0, 1)]))
+        lo_w, hi_w = 150.0 * z, 800.0 * z
+        ref_edges = ref_edges[(ref_edges > lo_w) & (ref_edges < hi_w)]
+        got = np.sort(np.concatenate([b.omega_low_rad_s, b.omega_high_rad_s]))
+        got = got[(got > lo_w * (1 + 1e-12)) & (got < hi_w * (1 - 1e-12))]     # interval ends clipped at the range
+        out.append(check(f"tongue edges in range at depth {b.depth:g}", SRC_HILL, "count", ref_edges.size, got.size,
+                         0.0, scale=1.0))
+        for e_ref, e in zip(ref_edges, got):
+            out.append(check(f"tongue edge at depth {b.depth:g}, tooth-pass {e_ref:.6g} rad/s", SRC_HILL,
+                             "speed (rad/s)", e_ref / z, e / z, 1e-8))
+    return out

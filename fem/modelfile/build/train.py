@@ -198,3 +198,29 @@ def reduction(doc):
         return None
     return ReductionSpec(modes=r.modes, shaft_modes=dict(r.shaft_modes), static_correction=r.static_correction,
                          threshold=r.threshold)
+
+
+def parametric(study):
+    """[parametric] -> :func:`fem.train.parametric.train_parametric` on the study's train."""
+    from ...train.parametric import train_parametric
+
+    doc = study.doc
+    t = doc.parametric
+    if t is None:
+        raise ModelError("model file (train)", "parametric", None, "a table [parametric] with speeds (or speeds_rpm) "
+                         "= { start, stop, points } and depth = { stop, .. } (required for drivefem parametric)")
+    grid, scale = (t.speeds, 1.0) if t.speeds is not None else (t.speeds_rpm, RPM)
+    budget.check_count("[parametric]", "points", grid.points * t.depth.points, 400_000, "Floquet grid points",
+                       [grid.points, t.depth.points])
+    if t.depth.stop < t.depth.start:
+        raise ModelError("[parametric]", "depth", [t.depth.start, t.depth.stop], "start <= stop")
+    if t.depth.points > 1 and t.depth.stop == t.depth.start:
+        raise ModelError("[parametric]", "depth.points", t.depth.points, "1 when start == stop")
+    for d in t.boundaries_at:
+        if d > t.depth.stop:
+            raise ModelError("[parametric]", "boundaries_at", t.boundaries_at, f"depths <= depth.stop = {t.depth.stop}")
+    return train_parametric(study.train, speed=operating_speed(doc), speed_min=grid.start * scale,
+                            speed_max=grid.stop * scale, n_speed=grid.points, depth_min=t.depth.start,
+                            depth_max=t.depth.stop, n_depth=t.depth.points, mesh=t.mesh,
+                            boundaries_at=list(t.boundaries_at), modes=t.modes, tolerance=t.tolerance,
+                            reduction=reduction(doc))

@@ -362,6 +362,8 @@ class TrainParametric(Table):
     """Reference speeds, rev/min."""
     depth: DepthAxis
     """Depth of the variation: { start, stop, points }."""
+    mesh: Name | None = None
+    """The [[mesh]] whose variation pulsates (default: the one mesh with a [mesh.variation])."""
     boundaries_at: list[NonNegative] = []
     """Depths at which the instability intervals are located by root finding."""
     modes: Count | None = None
