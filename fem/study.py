@@ -177,7 +177,8 @@ class Study:
             self.__dict__[key] = compile_train(ts, build_train.operating_speed(self.doc),
                                                reduction=build_train.reduction(self.doc),
                                                drivers=build_train.drivers(ts, self.doc),
-                                               loads=build_train.loads(ts, self.doc), eliminate_rigid=eliminate_rigid)
+                                               loads=build_train.loads(ts, self.doc), eliminate_rigid=eliminate_rigid,
+                                               start=self.doc.train.start)
         return self.__dict__[key]
 
     def problem_spec(self, t_end: float | None = None):
@@ -249,6 +250,16 @@ class Study:
 
             with single_threaded_blas():     # small dense kernels: BLAS threads only add contention
                 return afc(self.steady_model(), progress)
+        if self.kind == "train":
+            from .train.forced import train_forced
+
+            t = self.doc.forced
+            if t is None:
+                raise ModelError("model file (train)", "forced", None, "a table [forced] with speeds = .. (the linear "
+                                 "response over speed) or [steady] (the nonlinear curve) for drivefem forced")
+            ts = self.train
+            return train_forced(ts, build_train.speeds(t, "[forced]"), build_train.loads(ts, self.doc),
+                                samples=t.samples)
         if self.kind == "rotor":
             from .rotor import unbalance_response
 

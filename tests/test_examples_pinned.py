@@ -56,6 +56,8 @@ PINNED = {
     "geared_ross_two_shaft.toml": ["geared-lateral-torsional-dense", "geared-lateral-torsional-ross"],
     "geared_rattle.toml": ["geared-backlash-kahraman-singh"],
     "geared_mesh_parametric.toml": ["geared-mesh-parametric-hill"],
+    "geared_two_stage.toml": ["geared-two-stage-loads"],
+    "geared_compressor_train.toml": ["geared-compressor-campbell"],
 }
 """Example file -> the validation cases that load it as their model."""
 

@@ -28,7 +28,8 @@ RPM = 30.0 / np.pi
 
 def add_parser(subparsers) -> None:
     """Route ``modal``, ``campbell`` of train files here (the other commands follow as they are built)."""
-    for name, command in (("modal", modal), ("campbell", campbell), ("parametric", parametric)):
+    for name, command in (("modal", modal), ("campbell", campbell), ("parametric", parametric), ("forced", forced),
+                          ("simulate", simulate)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), command))
 
@@ -125,7 +126,10 @@ def campbell(args) -> int:
     if args.png:
         from ..train.plots import plot_train_campbell
 
-        print(f"wrote {plot_train_campbell(camp, args.png, title=study.title, ratios=study.train.ratios)}")
+        ts = study.train
+        lines = {f"tooth pass {m.name}": m.teeth[0] * abs(ts.ratio_of(m.ports[0])) / (2 * np.pi)
+                 for m in ts.train.connections if getattr(m, "teeth", None)}
+        print(f"wrote {plot_train_campbell(camp, args.png, title=study.title, ratios=ts.ratios, lines=lines, reference=ts.train.reference)}")
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
@@ -177,3 +181,109 @@ def parametric_table(study, res, out=None) -> None:
         for lo, hi, cen, k in zip(b.omega_low_rad_s, b.omega_high_rad_s, b.centre, b.crossing):
             print(f"  {cen:>10}  speed ({lo / z:.6g}, {hi / z:.6g}) rad/s = ({lo / z * RPM:.6g}, {hi / z * RPM:.6g}) "
                   f"rev/min; tooth-pass ({lo:.6g}, {hi:.6g}) rad/s; multiplier through {k}", file=out)
+
+
+# ---------------------------------------------------------------- forced
+def forced(args) -> int:
+    from ..output import columns, tables
+    from .progress import progress_bar
+
+    _check_outputs(args, json=False, csv=False, plot=False)
+    study = _load(args.model)
+    if study.is_steady():
+        w0, w1 = study.doc.steady.range
+        with progress_bar(w0, w1, "continuation", "rad/s") as update:
+            res = study.forced(progress=update)
+        _emit(args, "forced", study, contract.forced_data(study, res))
+        tables.forced_table(study, res, all_rows=args.all)
+        if args.csv:
+            columns.write(args.csv, columns.afc(res))
+            print(f"wrote {args.csv}")
+        if args.plot:
+            from ..output.figures import plot_afc
+
+            plot_afc(res, args.plot)
+            print(f"wrote {args.plot}")
+        if res.stop_cause == "interrupted":
+            print(f"continuation {res.reason}", file=sys.stderr)
+            from .exit_codes import EXIT_INTERRUPTED
+
+            return EXIT_INTERRUPTED
+        return 0 if res.completed else 1
+    res = study.forced()
+    _emit(args, "forced", study, contract.forced_data(study, res))
+    forced_table(study, res, all_rows=args.all)
+    if args.csv:
+        head = ["speed_rad_s", "speed_rpm"] + [f"{c.connection}:{c.coordinate} {q}" for c in res.connections
+                                               for q in ("peak", "dynamic_factor")] + \
+            [f"{k} peak_radial" for k in res.bearings]
+        rows = []
+        for j, sp_ in enumerate(res.speeds_rad_s):
+            row = [sp_, sp_ * RPM]
+            for c in res.connections:
+                row += [c.peak[j], c.dynamic_factor[j] if np.isfinite(c.dynamic_factor[j]) else ""]
+            row += [v["peak_radial"][j] for v in res.bearings.values()]
+            rows.append(row)
+        write_csv(args.csv, head, rows)
+        print(f"wrote {args.csv}")
+    if args.plot:
+        from ..train.plots import plot_train_forced
+
+        print(f"wrote {plot_train_forced(res, args.plot, title=study.title)}")
+    return 0
+
+
+def forced_table(study, res, all_rows: bool = False, out=None) -> None:
+    out = sys.stdout if out is None else out
+    print(f"{study.title}\nlinear response over speed: harmonics " + ", ".join(res.harmonics) +
+          f"; force balance of every shaft: max residual {res.balance_max:.1e}", file=out)
+    for c in res.connections:
+        print(f"  {c.connection}:{c.coordinate}: static {c.static:.6g}", file=out)
+    cols = [(f"{c.connection} DLF", c.dynamic_factor) for c in res.connections if c.coordinate == "line of action"]
+    cols += [(f"{c.connection} peak", c.peak) for c in res.connections]
+    print(f"{'rev/min':>10} {'rad/s':>10}" + "".join(f" | {name[:22]:>22}" for name, _ in cols), file=out)
+    s = res.speeds_rad_s
+    idx = np.arange(s.size)
+    if idx.size > 40 and not all_rows:
+        idx = np.unique(np.linspace(0, idx.size - 1, 40).astype(int))
+    for j in idx:
+        print(f"{s[j] * RPM:10.2f} {s[j]:10.4f}" + "".join(f" | {v[j]:22.6g}" for _, v in cols), file=out)
+    if idx.size < s.size:
+        print(f"({s.size} speeds; every {s.size // idx.size}th shown, --all for all)", file=out)
+    for w in res.warnings:
+        print(f"warning: {w}", file=out)
+
+
+# ---------------------------------------------------------------- simulate
+def simulate(args) -> int:
+    from ..output import tables
+    from .progress import progress_bar
+
+    _check_outputs(args, json=False, csv=False, png=True)
+    study = _load(args.model)
+    with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
+        res = study.simulate(progress=update)
+    d = _emit(args, "simulate", study, res.to_dict())
+    tables.simulation_summary(study.title, d)
+    print(f"force balance of every shaft and body at every sample: max residual {d['force_balance']['max_residual']:.1e}")
+    for k, v in d["connection_forces"].items():
+        print(f"  {k}: force min {v['min']:.6g}, max {v['max']:.6g}, mean {v['mean']:.6g}")
+    for k, v in d["bearing_forces"].items():
+        print(f"  {k}: max radial force {v['max_radial']:.6g} N")
+    if args.csv:
+        r = res.result
+        cf = res.connection_forces()
+        head = ["t"] + [f"{n}.x" for n in r.names] + [f"{n}.v" for n in r.names] + [f"{k} force" for k in cf]
+        cols = [r.t] + list(r.x) + list(r.v) + list(cf.values())
+        write_csv(args.csv, head, np.column_stack(cols).tolist())
+        print(f"wrote {args.csv}")
+    if args.png:
+        from ..train.plots import plot_train_simulation
+
+        for p in plot_train_simulation(res, args.png, title=study.title):
+            print(f"wrote {p}")
+    if str(d.get("reason", "")).startswith("interrupted"):
+        from .exit_codes import EXIT_INTERRUPTED
+
+        return EXIT_INTERRUPTED
+    return 1 if d.get("stopped_early") else 0

@@ -96,6 +96,8 @@ def forced_data(study, res) -> dict:
     """One shape for linear FE/lumped, drive and nonlinear (steady) results: outputs x frequencies."""
     from discrete.steady import AFCResult
 
+    if study is not None and study.kind == "train" and not isinstance(res, AFCResult):
+        return _train_forced(res)
     if isinstance(res, AFCResult):
         d = res.to_dict()
         om = res.omega
@@ -194,6 +196,27 @@ def campbell_data(study, camp) -> dict:
     d["n_dofs"] = sys_.n_dofs - int(sys_.constrained.size)
     if study.kind == "train":
         d["speed_ratios"] = dict(study.train.ratios)
+    return d
+
+
+def _train_forced(res) -> dict:
+    """A train's linear response over speed (:class:`fem.train.forced.TrainForcedResult`): the speeds as
+    ``omega_rad_s``; outputs: every connection coordinate's peak force and dynamic load factor, every
+    bearing's peak radial force."""
+    d = res.to_dict()
+    outs, amp = [], []
+    for c in res.connections:
+        outs.append(f"{c.connection}:{c.coordinate} peak force")
+        amp.append(c.peak)
+        outs.append(f"{c.connection}:{c.coordinate} dynamic load factor")
+        amp.append(np.where(np.isfinite(c.dynamic_factor), c.dynamic_factor, 0.0))
+    for k, v in res.bearings.items():
+        outs.append(f"{k} peak radial force")
+        amp.append(v["peak_radial"])
+    w = res.speeds_rad_s
+    d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi), "outputs": outs, "amplitude": amp,
+              "phase_lag_deg": None, "response": None, "steady": False,
+              "damping": "bearings, mesh and coupling dampers (no global damping)"})
     return d
 
 

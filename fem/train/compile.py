@@ -153,10 +153,11 @@ def _shaft_system(ts: TrainSystem, b, speed: float) -> tuple[LinearSystem, sp.cs
 
 def compile_train(ts: TrainSystem, speed: float = 0.0, *, reduction: ReductionSpec | None = None,
                   drivers: list[TrainDriver] = (), loads: list[TrainLoad] = (),
-                  eliminate_rigid: bool = False, linear: bool = False) -> CompiledTrain:
+                  eliminate_rigid: bool = False, linear: bool = False, start: str = "rest") -> CompiledTrain:
     """The nonsmooth problem of ``ts`` at the reference ``speed`` (see the module docstring); ``linear``: the
     connections in their declared linear state instead (no elements, no transmission error: the Floquet
-    analysis of the mean train)."""
+    analysis of the mean train); ``start``: "rest" (the bodies' x0, v0) or "static" (the static state under the
+    constant loads, every contact element on the side the loads press it to: :func:`static_start`)."""
     speed = float(speed)
     n = ts.n_dofs
     warnings = list(ts.warnings)
@@ -304,9 +305,58 @@ def compile_train(ts: TrainSystem, speed: float = 0.0, *, reduction: ReductionSp
     comp = CompiledTrain(ts=ts, speed=speed, system=system, T=T, n_red=n_red, elements=elements, drivers=drv,
                          forces=forces, x0=x0, v0=v0, probes=probes, exo=exo_index, reports=reports,
                          load_vectors=load_vectors, driver_dofs=sorted(drv_full), warnings=warnings)
+    if start == "static":
+        comp.x0 = static_start(comp)
     if eliminate_rigid:
         _eliminate_rigid(comp)
     return comp
+
+
+def static_start(comp: CompiledTrain, max_iter: int = 30) -> np.ndarray:
+    """The static state of the compiled system under the constant parts of the loads and the drivers'
+    positions at t = 0, with every clearance element in the mode its coordinate falls in (an active-set
+    iteration from the elements engaged without clearance); a free rotation is fixed by the minimum-norm
+    solution (least squares).  The start of a run that begins in the loaded state instead of at rest."""
+    sys_ = comp.system
+    N = sys_.n_dofs
+    f, c = sys_.free, sys_.constrained
+    K = np.asarray(sys_.K.toarray())
+    rhs0 = np.zeros(N)
+    for F in comp.forces:
+        rhs0 += F.g * (F.value + F.amplitude * np.sin(F.phase))
+    xc = np.zeros(N)
+    for j, law in comp.drivers.items():
+        xc[j] = law.offset + law.amplitude * np.sin(law.phase)
+    bounded = [(i, el) for i, el in enumerate(comp.elements) if hasattr(el, "lower") and hasattr(el, "upper")
+               and hasattr(el, "k")]
+    modes = {i: None for i, _ in bounded}            # None: engaged without clearance (first pass)
+    x = np.zeros(N)
+    for _ in range(max_iter):
+        A = K.copy()
+        rhs = rhs0.copy()
+        for i, el in bounded:
+            m = modes[i]
+            if m == 0:
+                continue
+            bound = 0.0 if m is None else (el.upper if m == 1 else el.lower)
+            A += el.k * np.outer(el.g, el.g)
+            rhs += el.k * bound * el.g
+        x = xc.copy()
+        x[f] = np.linalg.lstsq(A[np.ix_(f, f)], (rhs - A @ xc)[f], rcond=1e-12)[0]
+        new = {}
+        first = all(m is None for m in modes.values())
+        for i, el in bounded:
+            s_ = float(el.g @ x)
+            if first:      # the side each contact is pressed to with no clearance: that flank closes
+                up, lo = np.isfinite(el.upper), np.isfinite(el.lower)
+                new[i] = (1 if s_ > 0 else 0) if (up and not lo) else ((-1 if s_ < 0 else 0) if (lo and not up)
+                                                                        else (1 if s_ > 0 else -1))
+            else:
+                new[i] = 1 if s_ > el.upper else (-1 if s_ < el.lower else 0)
+        if new == modes:
+            break
+        modes = new
+    return x
 
 
 def _eliminate_rigid(comp: CompiledTrain) -> None:

@@ -266,7 +266,10 @@ def train_forced(ts: TrainSystem, speeds, loads: list[TrainLoad] = (), *, sample
             Z = sp.csc_matrix((K + 1j * w * C - w * w * M)[free][:, free])
             Q = np.zeros(n, complex)
             try:
-                Q[free] = spla.splu(Z).solve(F[free])
+                lu = spla.splu(Z)
+                x = lu.solve(F[free])
+                x = x + lu.solve(F[free] - Z @ x)            # one step of iterative refinement
+                Q[free] = x
             except RuntimeError:
                 raise SolverError(f"speed {speed:.6g} rad/s, {lab}: the dynamic stiffness is singular at "
                                   f"omega = {w:.6g} rad/s (an undamped resonance)") from None
@@ -312,7 +315,9 @@ def train_forced(ts: TrainSystem, speeds, loads: list[TrainLoad] = (), *, sample
         # force balance: static state and every harmonic
         bts = bearing_terms(ts, speed)
         cases = [(q_s, np.zeros(n), -(M @ _rigid_part(R, lam)), f_static, None, {})]
-        cases += [(Q, 1j * w * Q, -w * w * Q, F, w, exo) for (Q, w, exo), (_, _, F, _) in zip(Qs, inputs)]
+        # a transmission error's load is the mesh force's exogenous part (counted with the mesh), not applied
+        cases += [(Q, 1j * w * Q, -w * w * Q, np.zeros(n, complex) if exo else F, w, exo)
+                  for (Q, w, exo), (_, _, F, _) in zip(Qs, inputs)]
         for q, v, a, f, w, exo in cases:
             terms = _terms(ts, q, v, a, f, M, Kint, Cint + speed * ts.G, Kpts, bts, conns, w, exo)
             b = balance(ts, dirs, {k: np.atleast_1d(V) for k, V in terms.items()})
@@ -358,20 +363,22 @@ def _terms(ts, q, v, a, f, M, Kint, Cint, Kpts, bts, conns, w, exo) -> dict:
         bear[bt.shaft_dofs[1]] += fb[1]
         if bt.axial_dof is not None:
             bear[bt.axial_dof] += fb[2]
-    conn = np.zeros(n, dt)
+    conn = {}
     for c, cd in conns:
         if w is None:
             Fc = -cd.k * cd.of(q)
         else:
             e = exo.get(c.name, 0.0) if cd.label == "line of action" else 0.0
             Fc = -(cd.k + 1j * w * cd.c) * (cd.of(q) - e)
-        np.add.at(conn, cd.idx, cd.val * Fc)
+        vec = np.zeros(n, dt)
+        np.add.at(vec, cd.idx, cd.val * Fc)
+        conn[f"{c.name}:{cd.label}"] = vec
     inertia = -(M @ a)
     damping = -(Cint @ v)
     elastic = -(Kint @ q)
     springs = -(Kpts @ q)
     held = np.zeros(n, dt)
-    tot = inertia + damping + elastic + springs + bear + conn + f
+    tot = inertia + damping + elastic + springs + bear + sum(conn.values(), np.zeros(n, dt)) + f
     held[ts.constrained] = -tot[ts.constrained]
     return {"inertia": inertia, "damping": damping, "elastic": elastic, "springs": springs, "bearings": bear,
-            "connections": conn, "applied": f, "supports": held}
+            **conn, "applied": f, "supports": held}

@@ -175,13 +175,18 @@ class Balance:
 
 def balance(ts: TrainSystem, dirs: list[Direction], terms: dict) -> Balance:
     """Balance of every direction: ``terms`` {name: force vectors (n, m)} whose sum must vanish (inertia
-    and damping with their signs: -M a, -C v, applied, bearings, supports, connections)."""
+    and damping with their signs: -M a, -C v, applied, bearings, supports, each connection).  The residual
+    of a direction is relative to the largest sum of the magnitudes of its terms over the samples (a
+    direction without forces: relative to the largest force of the train)."""
     out = Balance()
+    glob = max((float(np.max(np.abs(F))) for F in terms.values() if np.size(F)), default=0.0)
     for d in dirs:
         proj = {k: d.r @ np.asarray(F) for k, F in terms.items()}
         total = sum(proj.values())
-        scale = np.maximum(sum(np.abs(p) for p in proj.values()), 1e-300)
-        res = float(np.max(np.abs(total) / np.max(scale))) if np.size(total) else 0.0
+        scale = float(np.max(sum(np.abs(p) for p in proj.values()))) if np.size(total) else 0.0
+        # a direction that carries (almost) no force is measured against the largest force of the train
+        denom = scale if scale > 1e-9 * glob else max(glob, 1e-300)
+        res = float(np.max(np.abs(total)) / denom) if np.size(total) else 0.0
         out.rows.append({"member": d.member, "direction": d.label, "residual": res,
                          "terms": {k: float(np.max(np.abs(p))) for k, p in proj.items()}})
     return out

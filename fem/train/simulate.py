@@ -117,12 +117,13 @@ class TrainSimulation:
             bear[bt.shaft_dofs[1]] += fb[1]
             if bt.axial_dof is not None:
                 bear[bt.axial_dof] += fb[2]
-        conn = np.zeros_like(q)
+        conn = {}
         xu, vu = c.uncompiled(x), c.uncompiled(v)
         el_forces = self.element_forces()
-        for _, label, g, k, cc, cd in c.probes:
+        for cn, label, g, k, cc, cd in c.probes:
             F = el_forces[label] if k is None else -k * (g @ xu) - cc * (g @ vu)
-            np.add.at(conn, cd.idx, np.outer(cd.val, F))
+            vec = conn.setdefault(f"{cn.name}:{label}", np.zeros_like(q))
+            np.add.at(vec, cd.idx, np.outer(cd.val, F))
         t = np.asarray(self.result.t)
         applied = np.zeros_like(q)
         for e, F in zip(c.load_vectors, c.forces):
@@ -131,12 +132,12 @@ class TrainSimulation:
         damping = -(Cint @ qd) - c.speed * (ts.G @ qd)
         elastic = -(Kint @ q)
         springs = -(point_springs(ts) @ q)
-        tot = inertia + damping + elastic + springs + bear + conn + applied
+        tot = inertia + damping + elastic + springs + bear + sum(conn.values(), np.zeros_like(q)) + applied
         held = np.zeros_like(q)
         hold = np.union1d(ts.constrained, np.asarray(c.driver_dofs, dtype=int))
         held[hold] = -tot[hold]
         return balance(ts, rigid_directions(ts), {"inertia": inertia, "damping": damping, "elastic": elastic,
-                                                  "springs": springs, "bearings": bear, "connections": conn,
+                                                  "springs": springs, "bearings": bear, **conn,
                                                   "applied": applied, "supports": held})
 
     def to_dict(self) -> dict:

@@ -44,6 +44,9 @@ class TrainTable(Table):
     and the Floquet analysis at fixed speed)."""
     speed_rpm: NonNegative | None = None
     """Operating speed of the reference, rev/min (or give speed)."""
+    start: Literal["rest", "static"] = "rest"
+    """Time simulation: start at rest (the bodies' x0, v0) or in the static state under the constant loads (every
+    backlash closed on the side the loads press it to)."""
 
     @model_validator(mode="after")
     def _speed(self):
