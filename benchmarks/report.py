@@ -54,9 +54,11 @@ SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("render.py", [], [], True),
     ("sweep.py", ["--frequencies", "10", "--warm-cluster"], [], True),
     ("afc.py", [], [], True),
+    ("loads.py", [], [], True),
     ("afc_hybrid.py", [], [], False),
     ("solid.py", ["--paths", "release", "auto"], [], False),
     ("rotor.py", ["--quick"], [], False),
+    ("pyharm.py", [], [], False),          # needs benchmarks/pyharm_env.sh (pyHarm in its own env)
 ]
 
 

@@ -30,3 +30,23 @@ def lazy_exports(package: str, exports: dict[str, str], namespace: dict):
         return sorted(set(namespace) | set(exports))
 
     return __getattr__, __dir__
+
+
+def lazy_module(name: str):
+    """The module ``name``, loaded on its first attribute access (``importlib.util.LazyLoader``): a
+    module-level ``from x import y as m`` that costs start-up in code paths that never use ``m``."""
+    import sys
+    import importlib.util
+
+    mod = sys.modules.get(name)
+    if mod is not None:
+        return mod
+    spec = importlib.util.find_spec(name)
+    if spec is None:
+        raise ModuleNotFoundError(f"No module named {name!r}", name=name)
+    loader = importlib.util.LazyLoader(spec.loader)
+    spec.loader = loader
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[name] = mod
+    loader.exec_module(mod)
+    return mod

@@ -10,11 +10,13 @@ from discrete.lazy import lazy_exports as _lazy_exports
 _EXPORTS = {**dict.fromkeys(["Damping", "HarmonicResult", "ModalResult", "ReducedModel", "frf",
                              "harmonic_response", "modal_analysis", "reduce", "static_deflection"], "discrete.linear"),
             **dict.fromkeys(["FEModel", "assemble"], "fem.assembly"),
+            **dict.fromkeys(["SectionLoads", "section_loads", "support_reactions"], "fem.loads"),
             **dict.fromkeys(["PointAttachment", "Segment", "ShaftModel", "Support"], "fem.model"),
             **dict.fromkeys(["Material", "Section"], "fem.sections")}
 
 __all__ = ["FEModel", "assemble", "ShaftModel", "Segment", "Support", "PointAttachment",
            "ModalResult", "modal_analysis", "Damping", "HarmonicResult", "harmonic_response", "frf",
-           "ReducedModel", "reduce", "static_deflection", "Material", "Section"]
+           "ReducedModel", "reduce", "static_deflection", "Material", "Section", "SectionLoads", "section_loads",
+           "support_reactions"]
 
 __getattr__, __dir__ = _lazy_exports(__name__, _EXPORTS, globals())

@@ -23,16 +23,27 @@ import numpy as np
 
 from discrete.errors import ModelError
 
+from discrete.lazy import lazy_module
+
 from . import modelfile
 from .modelfile import budget
-from .modelfile.build import drive as build_drive
-from .modelfile.build import fe as build_fe
-from .modelfile.build import hybrid as build_hybrid
-from .modelfile.build import linear as build_linear
-from .modelfile.build import lumped as build_lumped
-from .modelfile.build import rotor as build_rotor
-from .modelfile.build import train as build_train
-from .modelfile.build.steady import steady_settings
+
+# the builders of each kind, loaded when a model of that kind uses them (start-up of the command line:
+# a lumped model file does not import scikit-fem, the rotor or the drive packages)
+build_drive = lazy_module("fem.modelfile.build.drive")
+build_fe = lazy_module("fem.modelfile.build.fe")
+build_hybrid = lazy_module("fem.modelfile.build.hybrid")
+build_linear = lazy_module("fem.modelfile.build.linear")
+build_lumped = lazy_module("fem.modelfile.build.lumped")
+build_rotor = lazy_module("fem.modelfile.build.rotor")
+build_train = lazy_module("fem.modelfile.build.train")
+
+
+def steady_settings(table):
+    """:func:`fem.modelfile.build.steady.steady_settings` (imported on use: it loads discrete.steady)."""
+    from .modelfile.build.steady import steady_settings as build
+
+    return build(table)
 from .modelfile.load import kind_of
 from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
 
@@ -249,7 +260,13 @@ class Study:
             from discrete.steady import afc
 
             with single_threaded_blas():     # small dense kernels: BLAS threads only add contention
-                return afc(self.steady_model(), progress)
+                sm = self.steady_model()
+                res = afc(sm, progress)
+                if self.doc.steady.backbone:   # the nonlinear mode through the response DOF (discrete.steady.nnm)
+                    from discrete.steady.nnm import afc_backbone
+
+                    res.extra["backbone"] = afc_backbone(sm, res).to_dict()
+                return res
         if self.kind == "train":
             from .train.forced import train_forced
 
@@ -394,6 +411,15 @@ class Study:
             budget.check_count("[run_up]", "duration", estimate, budget.MAX_TIME_STEPS, note, spec.run.duration)
 
         return run_up(self.rotor, spec.run, spec.unbalances, spec.rubs, progress=progress, check_steps=check_steps)
+
+    def loads(self, result):
+        """Internal loads of ``result`` (an analysis of this study): section loads along the FE shaft or the
+        rotor and the reactions of supports, springs, drivers and bearings (:class:`fem.loads.study.StudyLoads`:
+        load shapes of modes, complex amplitudes of forced responses, time histories of hybrid runs); None
+        for lumped and drive files and nonlinear steady states (docs/loads.md)."""
+        from .loads.study import study_loads
+
+        return study_loads(self, result)
 
     def steady_model(self):
         """The steady-state model of [steady] (lumped and hybrid files)."""

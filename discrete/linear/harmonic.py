@@ -77,6 +77,7 @@ class HarmonicResult:
     damping: str
     relative: np.ndarray | None = None   # relative response (output minus base motion) for kinematic excitation
     warnings: list[str] = field(default_factory=list)
+    full: np.ndarray | None = field(default=None, repr=False)   # (n_freq, n_dofs): every DOF (section loads)
 
     @property
     def frequencies_hz(self) -> np.ndarray:
@@ -171,7 +172,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     if system.H.nnz and damping.type != "none":
         desc += " + hysteretic (psi of segments/springs)"
     res = HarmonicResult(omega_rad_s=omegas, response=Q[:, outputs], outputs=[system.label(i) for i in outputs],
-                         method=name, damping=desc)
+                         method=name, damping=desc, full=Q)
     if np.any(Ub):
         ub_full = np.zeros(n, dtype=complex)
         ub_full[system.constrained] = Ub

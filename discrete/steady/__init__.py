@@ -11,7 +11,7 @@ from .hb import HBModel, backbone, floquet_hb
 from .shooting import ShootingModel
 from ..nonsmooth.elements import Cubic
 from .system import PeriodicSystem
-from . import estimates
+# estimates (scipy.optimize, ~0.09 s to import) is a submodule loaded on use: discrete.steady.estimates
 
 __all__ = ["AFCResult", "SteadyModel", "SteadySettings", "afc", "Branch", "arclength",
            "HBModel", "backbone", "floquet_hb", "ShootingModel", "Cubic", "PeriodicSystem", "estimates"]

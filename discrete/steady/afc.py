@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelError, SolverError
+from .condense import arclength_scale, condensed_model
 from .continuation import arclength, refine_fold
 from .hb import HBModel, floquet_hb_batch, time_guess
 from .shooting import ShootingModel, section_phase
@@ -44,6 +45,7 @@ class SteadySettings:
     scale: float = 1.0
     start: str = "linear"                    # HB start: "linear" guess, or "time": integrated from x0/v0
     start_periods: int = 100                 # "time": forcing periods (x subharmonic) integrated first
+    condense: str = "auto"                   # HB on the nonlinear DOFs by exact condensation: auto|yes|no (condense.py)
 
 
 @dataclass
@@ -241,18 +243,24 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
     w0, w1 = cfg.range
-    X0 = _hb_start(sm, hb, w0)
-    xs = np.full(X0.size, max(np.max(np.abs(X0)), 1e-12))
+    # hook (condense.py): the continuation runs on the exactly condensed HB equations of the nonlinear DOFs
+    # when [steady] condense says so; its states are expanded to the full coefficients (to_full)
+    cond, cond_why = condensed_model(sm.system, hb, cfg.condense)
+    solver = hb if cond is None else cond
+    to_full = (lambda x, w: x) if cond is None else cond.expand
+    X0 = _hb_start(sm, hb, w0) if cond is None else cond.start(w0, lambda: _hb_start(sm, hb, w0))
+    xs = np.full(X0.size, max(np.max(np.abs(X0)), 1e-12)) if cond is None else arclength_scale(cond, X0, w0)
 
     def fun(x, w, need_w=True):
-        return hb.evaluate_residual(x, w, jac=True, dw=need_w)
+        return solver.evaluate_residual(x, w, jac=True, dw=need_w)
 
     br = arclength(fun, X0, w0, w1, xscale=xs, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
                    ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, callback=_report(progress))
     om, stab, mm, states, crit = [], [], [], [], []
-    mus = floquet_hb_batch(hb, br.x, br.w) if cfg.stability and br.x else [None] * len(br.x)
-    resp = sm.measure_hb(hb, br.x, br.w)
-    for x, w, mu in zip(br.x, br.w, mus):           # all inside the range: a crossing is landed on the bound
+    xfull = [to_full(x, w) for x, w in zip(br.x, br.w)]
+    mus = floquet_hb_batch(hb, xfull, br.w) if cfg.stability and br.x else [None] * len(br.x)
+    resp = sm.measure_hb(hb, xfull, br.w)
+    for x, w, mu in zip(xfull, br.w, mus):           # all inside the range: a crossing is landed on the bound
         states.append(x)
         om.append(w)
         _record_stability(mu, mm, crit, stab)
@@ -262,13 +270,15 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
             xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs, br.tangent_w[i] > 0)
         except (SolverError, np.linalg.LinAlgError):
             xf, wf = _refine_fold(br, i, wf, fr)
-        t, q, v = hb.evaluate(xf, wf, points=max(512, hb.N))
+        t, q, v = hb.evaluate(to_full(xf, wf), wf, points=max(512, hb.N))
         folds.append({"omega": wf, "response": sm.measure(t, q, v, wf)})
     return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
                      max_multiplier=np.array(mm), folds=folds, method=f"hb (H = {hb.H}, N = {hb.N}, AFT)",
                      response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=br.reason,
                      completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
-                     stability_computed=cfg.stability, extra={"steps_rejected": br.steps_rejected}, states=states,
+                     stability_computed=cfg.stability, extra={"steps_rejected": br.steps_rejected,
+                                                              "condensation": cond_why if cond else None},
+                     states=states,
                      critical=np.array(crit))
 
 

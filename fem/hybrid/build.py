@@ -105,6 +105,7 @@ class HybridModel:
     forcing_omegas: tuple = ()             # frequencies of the harmonic forcing (the psi reference)
     initial_harmonic: bool = False         # start from the steady state of the linear FE model under the forces
     title: str = ""
+    superelement_dofs: dict = field(default_factory=dict)   # "NAME:DOF" -> FE DOF index ([[superelement]])
 
 
 @dataclass
@@ -189,6 +190,8 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
 
     def resolve(ref: NodeRef, where: str):
         """('fe', full index) or ('body', body index)."""
+        if ref.body is not None and ref.body in model.superelement_dofs:   # a super-element DOF (fem/superelement.py)
+            return ("fe", model.superelement_dofs[ref.body])
         if ref.body is not None:
             if ref.body not in names:
                 raise ModelError(where, "body", ref.body, "one of " + ", ".join(map(repr, names)) if names
@@ -305,7 +308,7 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     if model.initial_velocity:
         vf0 = vf0 + model.initial_velocity * (system.dof_field == fe.model.fields[0])
     if model.initial_harmonic:
-        q_h, v_h = linear_steady_state(system, fe, model.forces)
+        q_h, v_h = linear_steady_state(system, fe, model.forces, model.superelement_dofs)
         qf0, vf0 = qf0 + q_h, vf0 + v_h
     if np.any(qf0) or np.any(vf0):
         if reduced is None:
@@ -326,7 +329,8 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
                           coupling=coupling)
 
 
-def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list) -> tuple[np.ndarray, np.ndarray]:
+def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list, index: dict | None = None
+                        ) -> tuple[np.ndarray, np.ndarray]:
     """Displacement and velocity at t = 0 of the steady response of the linear (undamped unless C is
     given) FE system to the harmonic forces ``F sin(omega t + phase)``: a starting state that removes
     the slowly decaying free transient of lightly damped nonsmooth runs."""
@@ -336,7 +340,9 @@ def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list) -> tupl
     for i, F in enumerate(forces, 1):
         if not F.amplitude:
             continue
-        j = fe_dof(fe, F.ref, f"[[force]] #{i}")
+        if F.ref.body is not None and F.ref.body not in (index or {}):
+            continue                     # a force on a lumped body: not part of the FE model's steady state
+        j = index[F.ref.body] if F.ref.body is not None else fe_dof(fe, F.ref, f"[[force]] #{i}")
         rhs = np.zeros(system.n_dofs)
         rhs[j] = F.amplitude
         w = F.omega

@@ -33,6 +33,7 @@ class HybridResult:
     warnings: list[str] = field(default_factory=list)
     method: str = "event"
     wall_time: float = 0.0
+    sample_index: np.ndarray | None = None     # the solver's records behind ``t`` (section loads)
 
     @property
     def events(self):
@@ -104,4 +105,4 @@ def run(model: HybridModel, settings: dict, compiled: CompiledHybrid | None = No
     fld = comp.field(res.x[:, idx])
     return HybridResult(t=res.t[idx], field_history=fld, fe=model.fe, solver=res, compiled=comp,
                         reduction=comp.restitution_report, warnings=warn, method=method,
-                        wall_time=time.perf_counter() - t0)
+                        wall_time=time.perf_counter() - t0, sample_index=idx)

@@ -17,6 +17,9 @@ from discrete.errors import ModelError
 
 def to_model_error(exc: ValidationError, root: type[BaseModel], kind: str, hints: dict[str, str]) -> ModelError:
     """The first problem of ``exc`` (raised validating ``root``) as a :class:`ModelError`."""
+    from .schema.docstrings import attach
+
+    attach()                          # the field descriptions (the "allowed" part)
     errors = exc.errors(include_url=False)
     err = _pick(errors)
     loc, etype, ctx = tuple(err["loc"]), err["type"], err.get("ctx") or {}

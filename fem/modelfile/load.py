@@ -49,6 +49,9 @@ def kind_of(model) -> str:
 
 def schema_json(kind: str | None = None) -> dict:
     """The JSON Schema of one kind of model file, or of any model file (``kind`` None)."""
+    from .schema.docstrings import attach
+
+    attach()                          # the field descriptions
     if kind is not None:
         if kind not in KINDS:
             raise ModelError("drivefem schema", "KIND", kind, " | ".join(map(repr, KINDS)))

@@ -71,6 +71,9 @@ def _rows(model) -> list[str]:
 
 
 def render() -> str:
+    from .schema.docstrings import attach
+
+    attach()                          # the field descriptions
     out = [HEADER]
     for kind, cls in KINDS.items():
         out.append(f"\n## `{kind}` files ({cls.__doc__.strip().splitlines()[0]})\n")

@@ -28,6 +28,13 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``, ``natural_frequency_rad_s``, ``log_decrement``,
   ``damping_ratio``, ``whirl`` (n_modes x n_speeds), ``kind_of_mode``, ``mac_min``, ``residual_max``,
   ``orders``, ``critical_speeds``, ``warnings``.
+* ``section_loads`` (FE, hybrid and rotor files; absent for lumped and drive files and nonlinear steady
+  states): the internal loads of the result (docs/loads.md) -- ``quantities`` (names), ``units``,
+  ``kind`` (modal | harmonic | time), ``stations`` (which), ``x`` and ``side`` (n_x; "left"/"right": the
+  value just left/right of x), ``values`` {quantity: n_x x n_columns} with one column per mode,
+  frequency or time sample (``omega_rad_s`` of frequencies and undamped modes, complex ``eigenvalues`` of
+  rotor modes, or ``t``), ``normalisation`` (modes),
+  ``reactions`` {``labels``, ``units``, ``values``: n_reactions x n_columns}, ``convention``, ``notes``.
 Complex numbers are ``{"re": .., "im": ..}``; no number is NaN or infinite.
 """
 from __future__ import annotations
@@ -44,13 +51,25 @@ def payload(command: str, study, data: dict) -> dict:
             **data}
 
 
+def with_loads(study, res, d: dict) -> dict:
+    """``d`` with the key ``section_loads`` where the study's kind has internal loads of ``res``."""
+    loads = study.loads(res) if study is not None and study.kind in ("fe", "hybrid", "rotor") else None
+    if loads is not None and loads.finite:
+        d["section_loads"] = loads.to_dict()
+    elif loads is not None:
+        d["section_loads"] = None
+        d.setdefault("warnings", []).append("section loads not written: they overflow double precision (scale the "
+                                            "model's units; the analysis' own results above are unaffected)")
+    return d
+
+
 # ------------------------------------------------------------------ modal
 def modal_data(study, res) -> dict:
     """Modal keys for FE, lumped, hybrid (ModalResult) and drive (DriveModalResult) results."""
     if study.kind == "drive":
         return _drive_modal(res)
     if study.kind == "rotor":
-        return _rotor_modal(study, res)
+        return with_loads(study, res, _rotor_modal(study, res))
     if study.kind == "train":
         return _train_modal(study, res)
     d = res.to_dict()
@@ -73,7 +92,7 @@ def modal_data(study, res) -> dict:
         d["mode_shapes"] = shapes
     else:
         d["mode_shapes"] = {"dofs": study.linear_system().labels(), "modes": res.shapes.T}
-    return d
+    return with_loads(study, res, d)
 
 
 def _drive_modal(res) -> dict:
@@ -108,7 +127,7 @@ def forced_data(study, res) -> dict:
         d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
         return d
     if study.kind == "rotor":
-        return _rotor_forced(res)
+        return with_loads(study, res, _rotor_forced(res))
     if study.kind == "drive":
         d = res.to_dict()
         Z = np.concatenate([res.theta, res.y], axis=1).T            # (2n, n_freq)
@@ -128,14 +147,14 @@ def forced_data(study, res) -> dict:
     if res.relative is not None:
         d["relative_amplitude"] = np.abs(res.relative).T
     d["steady"] = False
-    return d
+    return with_loads(study, res, d)
 
 
 # ------------------------------------------------------------------ simulate
 def simulate_data(study, res) -> dict:
     d = res.to_dict()
     d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
-    return d
+    return with_loads(study, res, d)
 
 
 def run_up_data(study, res) -> dict:

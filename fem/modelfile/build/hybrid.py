@@ -7,7 +7,8 @@ from discrete.errors import ModelError
 from discrete.nonsmooth import MotionLaw
 
 from ...assembly import assemble
-from ...hybrid.build import Body, DriverSpec, ElementSpec, ForceSpec, HybridModel, NodeRef, ReductionSpec, Spring
+from ...hybrid.build import (Body, DriverSpec, ElementSpec, ForceSpec, HybridModel, NodeRef, ReductionSpec, Spring,
+                             fe_dof)
 from ...hybrid.distributed import distributed_friction
 from ..schema.lumped import NodeEnd
 from .damping import linear_damping
@@ -42,6 +43,39 @@ def _terms(t, where: str) -> list:
     return [(_ref(t, where), 1.0 if t.ratio is None else t.ratio)]
 
 
+def superelements(doc, fe):
+    """The shaft's system joined with the ``[[superelement]]`` parts (fem/superelement.py), and the index of
+    their DOFs by ``NAME:DOF``; the description files are found relative to the model file."""
+    from pathlib import Path
+
+    from ...superelement import join, read_superelement
+
+    src = getattr(doc, "__source__", None)
+    root = Path(src).parent if src is not None else Path.cwd()
+    parts, seen = [], {}
+    bodies = {b.name for b in doc.body}
+    for i, t in enumerate(doc.superelement, 1):
+        w = f"[[superelement]] #{i}"
+        if t.name in seen:
+            raise ModelError(w, "name", t.name, f"a name not used by [[superelement]] #{seen[t.name]}")
+        seen[t.name] = i
+        se = read_superelement(root / t.file, name=t.name, where=w)
+        clash = sorted(bodies & {f"{t.name}:{d}" for d in se.dofs})
+        if clash:
+            raise ModelError(w, "name", t.name, f"a name whose DOFs are not [[body]] names ({clash[0]!r})")
+        joined = {}
+        for j in t.join:
+            if j.dof not in se.dofs:
+                raise ModelError(f"{w} join", "dof", j.dof, "one of the super-element's DOFs: "
+                                 + ", ".join(map(repr, se.dofs[:8])) + (" ..." if se.n > 8 else ""))
+            joined[j.dof] = fe_dof(fe, NodeRef(x=j.x, dof=j.field), f"{w} join")
+        if len(set(joined.values())) != len(joined):
+            raise ModelError(f"{w} join", "x", [j.x for j in t.join], "distinct shaft DOFs for distinct "
+                             "super-element DOFs")
+        parts.append((se, joined))
+    return join(fe.system, parts)
+
+
 def hybrid_model(doc) -> HybridModel:
     """The :class:`HybridModel` of a hybrid model file."""
     seen = {}
@@ -53,6 +87,8 @@ def hybrid_model(doc) -> HybridModel:
     fe = assemble(shaft_model(doc))
     grav = doc.constants.g
     model = HybridModel(fe=fe, title=doc.title)
+    if doc.superelement:
+        fe.system, model.superelement_dofs = superelements(doc, fe)
     for i, b in enumerate(doc.body, 1):
         if b.inertia_rate or b.reactive:
             key = "inertia_rate" if b.inertia_rate else "reactive"

@@ -18,7 +18,8 @@ class Table(BaseModel):
     """A TOML table: strict types, finite numbers, unknown keys are an error."""
 
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True,
-                              use_attribute_docstrings=True)
+                              defer_build=True)
+    # field descriptions (the string under each field): attached on demand, docstrings.attach()
 
     def given(self, name: str) -> bool:
         """Whether the key was written in the file (not filled in by its default)."""

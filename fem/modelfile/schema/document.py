@@ -29,6 +29,7 @@ from .rotor import (CampbellTable, RotorAnalysis, RotorTable, RubTable, RunUpTab
                     UnbalanceTable)
 from .simulation import Constants, Initial, Reduction, Simulation
 from .steady import Steady, Sweep
+from .superelement import SuperElement
 from .train import (CouplingTable, MeshTable, TrainAnalysis, TrainBodyTable, TrainDriverTable, TrainForced,
                     TrainForceTable, TrainParametric, TrainReduction, TrainShaftTable, TrainTable)
 
@@ -167,6 +168,8 @@ class HybridFile(ModelFileBase, FETables, LumpedTables, LinearTables, ElementTab
     """[reduction]: modal reduction of the FE part."""
     initial: Initial = Initial()
     """[initial]: initial state of the FE field."""
+    superelement: _array(SuperElement)
+    """[[superelement]]: linear parts from matrix files joined to the shaft."""
 
     @model_validator(mode="after")
     def _rules(self):
@@ -260,7 +263,7 @@ TRAIN_MARKERS = ("train", "shaft", "mesh", "coupling")
 """Top-level tables of a train file (no other kind has them)."""
 HYBRID_MARKERS = tuple(dict.fromkeys(("body", "driver", "spring", "damper", *ELEMENT_TABLES, "force",
                                       "distributed_friction", "reduction", "initial", "simulation", "steady",
-                                      "sweep")))
+                                      "sweep", "superelement")))
 """Tables that make a file with [[segment]]s hybrid: lumped parts, every element table of the
 element registry (a new element needs no entry here), and the time/steady-state tables."""
 
@@ -285,7 +288,8 @@ def detect_kind(doc: dict) -> str:
 #: where a top-level key belongs, for the error of a key given in a file of another kind
 OTHER_KIND = {
     **{k: "an FE table: only together with [[segment]] tables (FE or hybrid models)"
-       for k in ("material", "model", "support", "point", "reduction", "initial", "distributed_friction")},
+       for k in ("material", "model", "support", "point", "reduction", "initial", "distributed_friction",
+                 "superelement")},
     **{k: "a table of FE and lumped models, not of drive files" for k in
        ("segment", "body", "driver", "spring", "damper", "gear", "friction", "one_sided", "gap", "impact",
         "cubic_spring", "force", "load", "base_motion", "response", "simulation", "steady", "sweep", "constants")},

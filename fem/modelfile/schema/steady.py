@@ -69,6 +69,13 @@ class Steady(Table):
     starting at the bodies' x0/v0 (the way onto a subharmonic branch, textbook §8.4)."""
     start_periods: Annotated[int, Field(ge=1, le=5_000)] = 100
     """HB, start = "time": response periods (forcing periods x subharmonic) integrated before HB."""
+    backbone: bool = False
+    """Also the nonlinear mode through the response DOF (backbone: frequency and damping ratio against
+    amplitude, extended periodic motion concept by HB), in the JSON and on the plot."""
+    condense: Literal["auto", "yes", "no"] = "auto"
+    """HB: solve on the nonlinear elements' DOFs only, the linear rest condensed exactly per harmonic
+    (its receptance factorised once per frequency); "auto" where it pays (at most half of the DOFs
+    nonlinear and >= 120 HB unknowns), "yes" always (an error if the linear rest is not regular), "no" never."""
 
     @model_validator(mode="after")
     def _range(self):
@@ -81,6 +88,8 @@ class Steady(Table):
             rule("omega_ref", None, "the reference frequency (rad/s) of z = omega / omega_ref (required key missing)")
         if self.start == "time" and self.method != "hb":
             rule("start", self.start, '"linear" with method = "shooting" (a time start is an HB option)')
+        if self.backbone and self.subharmonic != 1:
+            rule("backbone", self.backbone, "false with subharmonic > 1 (the mode of the period-1 response)")
         if self.samples is not None and self.samples < 4 * self.harmonics + 2:
             rule("samples", self.samples, f"at least 4 harmonics + 2 = {4 * self.harmonics + 2}")
         return self

@@ -30,6 +30,11 @@ def plot_afc(result, path, ax=None, label=None) -> None:
     for f in result.folds:
         fx = f["omega"] / result.omega_ref if result.omega_ref else f["omega"]
         ax.plot([fx], [f["response"]], "o", ms=4, color=line.get_color(), mfc="none")
+    bb = (result.extra or {}).get("backbone")
+    if bb and bb.get("response"):
+        bx = np.asarray(bb["omega_rad_s"]) / (result.omega_ref or 1.0)
+        ax.plot(bx, bb["response"], "-.", color="0.35", lw=1.2,
+                label=f"backbone: nonlinear mode ({bb['method'].split(' (')[0]})")
     if own:
         ax.set_xlabel("z = omega / omega_ref" if result.omega_ref else "omega, rad/s")
         ax.set_ylabel(result.response_label)
