@@ -116,7 +116,11 @@ def forced_data(study, res) -> dict:
     from discrete.steady import AFCResult
 
     if study is not None and study.kind == "train" and not isinstance(res, AFCResult):
-        return _train_forced(res)
+        d = _train_forced(res)
+        loads = res.static_section_loads(study.train)
+        if all(v.finite for v in loads.values()):
+            d["section_loads_static"] = {k: v.to_dict() for k, v in loads.items()}
+        return d
     if isinstance(res, AFCResult):
         d = res.to_dict()
         om = res.omega

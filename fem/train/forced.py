@@ -177,6 +177,12 @@ class TrainForcedResult:
         raise ModelError("result", "connection", name, "one of " + ", ".join(sorted({c.connection for c in
                                                                                          self.connections})))
 
+    def static_section_loads(self, ts) -> dict:
+        """{shaft: :class:`fem.loads.SectionLoads` of the static state} (fem.loads per shaft)."""
+        from .loads import shaft_section_loads
+
+        return {b.name: shaft_section_loads(ts, b.name, self.static_state) for b in ts.blocks}
+
     def to_dict(self) -> dict:
         return {"speeds_rad_s": self.speeds_rad_s.tolist(), "speeds_rpm": (self.speeds_rad_s * 30 / math.pi).tolist(),
                 "harmonics": list(self.harmonics), "harmonic_frequencies_rad_s": self.frequencies.tolist(),

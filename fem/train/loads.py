@@ -190,3 +190,22 @@ def balance(ts: TrainSystem, dirs: list[Direction], terms: dict) -> Balance:
         out.rows.append({"member": d.member, "direction": d.label, "residual": res,
                          "terms": {k: float(np.max(np.abs(p))) for k, p in proj.items()}})
     return out
+
+
+def shaft_section_loads(ts: TrainSystem, shaft: str, q, *, qd=None, qdd=None, omega=None, speed: float = 0.0,
+                        x=None):
+    """Section loads (torque, axial force, bending moments, shear forces) along one shaft of the train by
+    :mod:`fem.loads` (the recovery from the element equations with inertia, damping and gyroscopic terms)
+    for the train DOF vector(s) ``q`` (static; harmonic with ``omega``; time history with ``qd``, ``qdd``);
+    ``speed``: the reference speed (a rotor shaft spins at |ratio| speed)."""
+    from ..loads import section_loads
+
+    b = ts.block(shaft, "section loads")
+    sl = slice(b.offset, b.offset + b.n)
+    q = np.asarray(q)[sl]
+    qd = None if qd is None else np.asarray(qd)[sl]
+    qdd = None if qdd is None else np.asarray(qdd)[sl]
+    if b.rs is not None:
+        spin = abs(b.ratio) * float(speed)
+        return section_loads(b.rs, q, qd=qd, qdd=qdd, omega=omega, x=x, speed=spin)
+    return section_loads(b.fe, q, qd=qd, qdd=qdd, omega=omega, x=x)

@@ -140,6 +140,14 @@ class TrainSimulation:
                                                   "springs": springs, "bearings": bear, **conn,
                                                   "applied": applied, "supports": held})
 
+    def section_loads(self, shaft: str, x=None):
+        """:class:`fem.loads.SectionLoads` along ``shaft`` at every sample (fem.loads, time-history recovery
+        with the velocities and the accelerations of the equations of motion)."""
+        from .loads import shaft_section_loads
+
+        q, qd, qdd = self.field
+        return shaft_section_loads(self.compiled.ts, shaft, q, qd=qd, qdd=qdd, speed=self.compiled.speed, x=x)
+
     def to_dict(self) -> dict:
         d = self.result.to_dict()
         cf = self.connection_forces()

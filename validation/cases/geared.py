@@ -598,6 +598,27 @@ def two_stage_loads():
                     lat += -sgn * F_mesh[m.name] * g["n"][1:]
         out.append(check(f"{b.name}: static bearing forces balance the mesh forces", "statics of the shaft", "N",
                          0.0, float(np.max(np.abs(tot + lat))), 1e-10, scale=max(abs(F_mesh["stage 2"]), 1.0)))
+    # fem.loads (section loads recovered from the element equations, and its bearing reactions) on the shafts
+    from fem.loads import rotor_reactions
+
+    sec = res.static_section_loads(ts)
+    for shaft, x, factor in (("input", 0.2, 1.0), ("intermediate", 0.25, 3.0), ("output", 0.5, 9.0)):
+        sl = sec[shaft]
+        k = int(np.argmin(np.abs(sl.x - x)))
+        out.append(check(f"{shaft}: static torque between its gear and its coupling/gear (fem.loads)",
+                         "statics: T = ratio x T_m", "N m", factor * Tm, abs(float(sl.quantities["torque"][k])), 1e-10))
+    for b in ts.blocks:
+        rr = rotor_reactions(b.rs, q[b.offset:b.offset + b.n])
+        mine = {bt.label.split(":", 1)[1]: bt.force(q, np.zeros_like(q))[:, 0] for bt in bearing_terms(ts, 0.0)
+                if bt.shaft == b.name}
+        diff = 0.0
+        for key, val in rr.items():
+            if key.endswith(":F_y") or key.endswith(":F_z"):
+                name = key.rsplit(":", 1)[0].replace("bearing ", "bearing")
+                comp = 0 if key.endswith("F_y") else 1
+                diff = max(diff, abs(float(np.real(np.ravel(val)[0])) - mine[name][comp]))
+        out.append(check(f"{b.name}: bearing forces = fem.loads.rotor_reactions", "fem.loads (issue 25)", "N", 0.0,
+                         diff, 1e-10, scale=max(abs(F_mesh["stage 2"]), 1.0)))
     out.append(check("force balance, linear response over speed", "equilibrium of every shaft and body",
                      "max relative residual", 0.0, res.balance_max, 1e-11, scale=1.0))
     sim = study.simulate()
