@@ -98,3 +98,71 @@ def test_cli_modal_and_campbell_of_a_train(tmp_path):
     assert main(["campbell", str(EXAMPLES / "geared_ross_two_shaft.toml"), "--json", str(out)]) == 0
     d = json.loads(out.read_text())
     assert d["critical_speeds"] and d["speed_ratios"]["turbine"] == pytest.approx(-328 / 23)
+
+
+def _write(tmp_path, doc, name="m.toml"):
+    import tomli_w
+
+    p = tmp_path / name
+    p.write_bytes(tomli_w.dumps(doc).encode())
+    return p
+
+
+def test_cli_forced_simulate_parametric_of_trains(tmp_path):
+    """The commands on small versions of the examples: exit 0, the JSON's keys, the force balance."""
+    import json
+
+    from fem.app.cli import main
+
+    doc = read_toml(EXAMPLES / "geared_two_stage.toml")
+    doc["forced"]["speeds_rpm"]["points"] = 3
+    doc["simulation"]["t_end"] = 0.002
+    p = _write(tmp_path, doc)
+    out = tmp_path / "f.json"
+    assert main(["forced", str(p), "--json", str(out), "--csv", str(tmp_path / "f.csv")]) == 0
+    d = json.loads(out.read_text())
+    assert d["kind"] == "train" and d["force_balance_max_residual"] < 1e-10
+    assert d["section_loads_static"]["intermediate"]["quantities"]
+    out = tmp_path / "s.json"
+    assert main(["simulate", str(p), "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["force_balance"]["max_residual"] < 1e-10 and "stage 1" in d["connection_forces"]
+    doc = read_toml(EXAMPLES / "geared_mesh_parametric.toml")
+    doc["parametric"].update(speeds={"start": 600.0, "stop": 720.0, "points": 5}, depth={"stop": 1.0, "points": 2})
+    p = _write(tmp_path, doc, "p.toml")
+    out = tmp_path / "p.json"
+    assert main(["parametric", str(p), "--json", str(out)]) == 0
+    d = json.loads(out.read_text())
+    assert d["tooth_pass_per_speed"] == 30 and d["boundaries"]
+
+
+def test_rattle_steady_by_shooting_and_a_sweep_point(tmp_path):
+    """The gear pair's steady state by shooting at one frequency equals a long simulation's last period; the
+    sweep command evaluates it (serially)."""
+    from fem.app.sweep import evaluate_point
+
+    doc = read_toml(EXAMPLES / "geared_rattle.toml")
+    doc["steady"] = {"method": "shooting", "omega": [14000.0, 14100.0], "response": {"element": "mesh",
+                                                                                       "measure": "max"}}
+    rec = evaluate_point(doc, {"force.0.omega": 14000.0}, "steady", periods=200)
+    assert rec["status"] == "ok", rec
+    r = rec["result"]
+    assert r["converged"] and r["stable"] and abs(r["response"] / r["response_observed"] - 1) < 1e-6
+
+
+def test_mesh_contact_is_the_gap_law_and_refuses_bad_values():
+    import scipy.sparse as sp_
+
+    from discrete.linear_system import LinearSystem
+    from discrete.nonsmooth import Problem, simulate
+    from discrete.nonsmooth.elements import Gap, MeshContact
+
+    ls = LinearSystem(M=sp_.eye(1), K=sp_.csr_matrix((1, 1)), dof_field=["x"], dof_name=["q"])
+    runs = [simulate(Problem(ls, [el], x0=np.array([1.0])), 20.0)
+            for el in (Gap("g", np.ones(1), k=1.0, lower=-0.1, upper=0.2),
+                       MeshContact("m", np.ones(1), k=1.0, lower=-0.1, upper=0.2))]
+    assert np.array_equal(runs[0].x, runs[1].x)
+    with pytest.raises(ModelError, match="stiffness stays positive"):
+        MeshContact("m", np.ones(1), k=1.0, harmonics=((1, 0.9, 0.5),), omega=1.0, engaged=True)
+    with pytest.raises(ModelError, match="tooth-pass"):
+        MeshContact("m", np.ones(1), k=1.0, harmonics=((1, 0.1, 0.0),), engaged=True)

@@ -118,8 +118,10 @@ def forced_data(study, res) -> dict:
     if study is not None and study.kind == "train" and not isinstance(res, AFCResult):
         d = _train_forced(res)
         loads = res.static_section_loads(study.train)
-        if all(v.finite for v in loads.values()):
+        if all(np.all(np.isfinite(np.asarray(q))) for v in loads.values() for q in v.quantities.values()):
             d["section_loads_static"] = {k: v.to_dict() for k, v in loads.items()}
+        else:
+            d.setdefault("warnings", []).append("section loads not written: they overflow double precision")
         return d
     if isinstance(res, AFCResult):
         d = res.to_dict()

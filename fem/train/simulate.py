@@ -31,6 +31,12 @@ class TrainSimulation:
     def t(self) -> np.ndarray:
         return self.result.t
 
+    def __getattr__(self, name):
+        """The solver's result fields (period, events, energy_error, x, v, names, ...) are the train's."""
+        if name.startswith("_") or name in ("result", "compiled", "warnings"):
+            raise AttributeError(name)
+        return getattr(self.result, name)
+
     @cached_property
     def _states(self):
         """(x, v, a) of the compiled system (all DOFs, drivers included) at every sample."""
