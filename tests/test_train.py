@@ -166,3 +166,41 @@ def test_mesh_contact_is_the_gap_law_and_refuses_bad_values():
         MeshContact("m", np.ones(1), k=1.0, harmonics=((1, 0.9, 0.5),), omega=1.0, engaged=True)
     with pytest.raises(ModelError, match="tooth-pass"):
         MeshContact("m", np.ones(1), k=1.0, harmonics=((1, 0.1, 0.0),), engaged=True)
+
+
+def test_slip_coupling_sticks_when_the_load_catches_up():
+    """A load body dragged by a slipping coupling from a driver at constant speed V: it accelerates at
+    S / I until it reaches V, at t* = I V / S, and then sticks (exact events)."""
+    I, V, S = 0.5, 10.0, 2.0
+    doc = {"title": "slip coupling", "body": [{"name": "drive", "inertia": 1.0}, {"name": "load", "inertia": I}],
+           "driver": [{"at": "drive", "velocity": V}],
+           "coupling": [{"name": "clutch", "between": ["drive", "load"], "slip_torque": S}],
+           "simulation": {"t_end": 4.0}}
+    sim = Study.parse(doc).simulate()
+    sticks = sim.result.event_times("stick")
+    assert sticks.size == 1 and abs(sticks[0] - I * V / S) < 1e-12 * I * V / S
+    assert sim.force_balance.max_residual < 1e-12
+    with pytest.raises(ModelError, match="slip coupling is rigid"):
+        doc["coupling"][0]["k_torsion"] = 1e3
+        Study.parse(doc).train
+
+
+@pytest.mark.slow
+def test_the_figures_script_reproduces_the_documented_numbers(tmp_path):
+    """examples/geared_trains.py (the figures of docs/geared.md) and the numbers the page quotes."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("geared_trains", EXAMPLES / "geared_trains.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    r = mod.main(tmp_path)
+    assert r["two_stage_static_mesh_force_N"]["stage 1"] == pytest.approx(354.726, rel=1e-5)
+    assert r["two_stage_max_dlf"]["stage 2"] == pytest.approx(2.8816, rel=1e-3)
+    assert r["two_stage_balance"] < 1e-11 and r["two_stage_sim_balance"] < 1e-11
+    assert r["two_stage_sim_events"] > 10
+    assert r["rattle_folds_shooting"] == pytest.approx(r["rattle_folds_exact"], rel=1e-6)
+    assert r["rattle_folds_hb"] == pytest.approx(r["rattle_folds_exact"], rel=1e-4)
+    assert r["parametric_principal_rad_s"] == pytest.approx([636.381, 696.453], rel=1e-5)
+    assert sorted(p.name for p in tmp_path.glob("*.png")) == sorted(
+        ["geared_compressor_campbell.png", "geared_mesh_parametric.png", "geared_rattle_afc.png",
+         "geared_two_stage_loads.png", "geared_two_stage_rattle.png"])
