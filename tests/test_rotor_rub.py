@@ -225,3 +225,16 @@ def test_two_rubs_at_once(method):
     assert (res.rubs[0].in_contact & res.rubs[1].in_contact).any()        # measured: 27 % / 9 % of the samples
     assert res.energy_error < (1e-6 if method == "event" else 1e-10)
     assert not any("Gauss-Seidel" in w for w in res.warnings)
+
+
+def test_first_contact_is_zero_when_the_run_starts_in_contact():
+    """start = 'steady' with the linear orbit already beyond an offset ring: in contact at t = 0, then
+    separations and new contacts every revolution; first_contact is t = 0, not the first later event."""
+    rotor = Rotor([ShaftSegment(0.8, 4, 0.03, MASSLESS)], discs=[Disc(0.4, 10.0)],
+                  supports=[Support(0.0), Support(0.8)], bearings=[Bearing(0.4, cyy=300.0, czz=300.0)])
+    res = run_up(rotor, RunUp(150.0, 150.0, 0.3, method="event", modes=2), [Unbalance(0.4, 1.5e-3)],
+                 [Rub(0.4, 1e-4, stiffness=2e6, centre=(-6e-5, 0.0))], probes=[0.4])
+    rub = res.rubs[0]
+    assert rub.in_contact[0]
+    assert any(e["kind"] == "contact" for e in res.events)          # later contacts exist
+    assert rub.first_contact["t"] == 0.0 and rub.first_contact["speed_rad_s"] == 150.0

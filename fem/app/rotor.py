@@ -273,8 +273,14 @@ def simulate(args) -> int:
     study = _load(args.model)
     with progress_bar(0.0, 1.0, "run-up", "") as update:
         res = study.run_up(progress=update)
-    doc = _emit(args, "simulate", study, contract.run_up_data(study, res))
+    data = contract.run_up_data(study, res)
+    whirl = _whirl(res)
+    if whirl is not None:
+        data["whirl"] = whirl[1].to_dict()
+    doc = _emit(args, "simulate", study, data)
     run_up_table(study, res)
+    if whirl is not None:
+        whirl_table(whirl[1])
     if args.csv:
         head = ["t", "speed_rad_s"] + [f"{c}@x={x:g}" for x in res.probe_x for c in ("y", "z")] + \
             [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")]
@@ -292,7 +298,35 @@ def simulate(args) -> int:
         print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
         print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+        if whirl is not None:
+            from ..rotor.plots import plot_cascade, plot_whirl_onset
+
+            cas, onset = whirl
+            print(f"wrote {plot_cascade(cas, out / 'cascade.png', onset=onset, title=study.title)}")
+            print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png')}")
     return 1 if doc.get("stopped") else 0
+
+
+def _whirl(res):
+    """(cascade, onset) of a run on fluid-film bearings at the probe that moves most, or None."""
+    if not any(b.kind == "journal_bearing" for b in res.bearings) or res.stopped:
+        return None
+    from ..rotor.whirl_spectrum import cascade, whirl_onset
+
+    onset = whirl_onset(res)
+    return cascade(res, onset.probe_x), onset
+
+
+def whirl_table(onset, out=None) -> None:
+    out = sys.stdout if out is None else out
+    if onset.onset_speed is None:
+        print(f"whirl at x = {onset.probe_x:g} m: no onset in the run (the subsynchronous amplitude does not turn to "
+              f"growth; {onset.whirl_frequency:.6g} rad/s dominant)", file=out)
+        return
+    print(f"whirl at x = {onset.probe_x:g} m: onset at {onset.onset_speed:.6g} rad/s ({onset.onset_speed * RPM:.6g} rev/min), "
+          f"whirl frequency {onset.whirl_frequency:.6g} rad/s ({onset.whirl_ratio:.4f} x speed); at the end "
+          f"{onset.final_frequency:.6g} rad/s ({onset.final_frequency / onset.final_speed:.4f} x speed), amplitude grew "
+          f"{onset.growth:.3g} x", file=out)
 
 
 def _lowest(values) -> str:
@@ -308,7 +342,8 @@ def run_up_table(study, res, out=None) -> None:
           f"{res.steps} steps ({'right-hand sides' if res.method == 'event' else 'time steps'}), {res.wall_time:.3g} s", file=out)
     fc = red["frequency_check"]
     print(f"reduced rotor: {red['basis']} shapes ({red['modes']} modes + {red['attachment_shapes']} attachment), "
-          f"highest {red['highest_frequency_rad_s']:.4g} rad/s; static restitution at the rubs "
+          f"highest {red['highest_frequency_rad_s']:.4g} rad/s; static restitution at the "
+          f"{'rubs and bearings' if res.bearings else 'rubs'} "
           f"{_lowest(red['restitution'])}; complex eigenvalues vs full rotor at {fc['speed_rad_s']:.4g} rad/s: "
           f"max rel. error {fc['max_relative_error']:.2e}", file=out)
     for k, x in enumerate(res.probe_x):
@@ -324,6 +359,10 @@ def run_up_table(study, res, out=None) -> None:
               f"max normal force {r.normal_force.max(initial=0.0):.4g} N; full annular rub at rev/min {full}; "
               f"contact share {100 * r.in_contact.mean():.1f} %"
               + (f"; max penetration {r.max_penetration:.3g} m" if res.method == "moreau" else ""), file=out)
+    for b in res.bearings:
+        print(f"  {b.kind.replace('_', ' ')} {b.name!r} at x = {b.x:g} m (clearance {b.clearance:g} m): eccentricity "
+              f"ratio {b.eccentricity.min():.4g} ... {b.eccentricity.max():.4g}, largest force {b.force.max(initial=0.0):.4g} N",
+              file=out)
     w = res.works
     print("energy: start {:.6g} J, end {:.6g} J; works ".format(res.energy_start, res.energy_end)
           + ", ".join(f"{k} {v:.6g}" for k, v in w.items()) + f" J; balance error {res.energy_error:.2e}", file=out)

@@ -13,7 +13,10 @@ analysis do it), and run the analyses:
 * :func:`stability_threshold` -- the onset speed of instability (cross-coupled stiffness);
 * :func:`run_up` -- a run-up through the speed range with rotor-stator rubs and bearing
   clearances (:class:`Rub`), compliant contacts located event by event or rigid ones by
-  Moreau-Jean, on a reduced rotor that reports its restitution, with the energy balance.
+  Moreau-Jean, on a reduced rotor that reports its restitution, with the energy balance;
+* bearings computed from their geometry (:mod:`fem.rotor.bearings`, imported on first use):
+  :class:`JournalBearing` (Reynolds film), :class:`RollingBearing`, :class:`SqueezeFilmDamper`,
+  with their nonlinear laws in run-ups, and :func:`whirl_onset` / :func:`cascade` of a run-up.
 
 Figures are in :mod:`fem.rotor.plots`, 3D whirl pictures in :mod:`fem.rotor.render`.
 ``RotorSystem.system_at(speed)`` gives the :class:`~discrete.linear_system.LinearSystem`
@@ -31,9 +34,17 @@ from .stability import StabilityResult, stability_threshold
 from .static import PointLoad, StaticResult, static_deflection
 from .whirl import Orbits, mac
 
+from discrete.lazy import lazy_exports as _lazy_exports   # noqa: E402
+
+# bearings computed from their geometry load scikit-fem: on first use only
+_LAZY = {"JournalBearing": "fem.rotor.bearings.journal", "RollingBearing": "fem.rotor.bearings.rolling",
+         "SqueezeFilmDamper": "fem.rotor.bearings.squeeze_film", "whirl_onset": "fem.rotor.whirl_spectrum",
+         "cascade": "fem.rotor.whirl_spectrum"}
+__getattr__, __dir__ = _lazy_exports(__name__, _LAZY, globals())
+
 __all__ = ["Rotor", "ShaftSegment", "Layer", "Disc", "Bearing", "Pedestal", "Coupling", "Support", "Unbalance", "rpm", "to_rpm",
            "RotorSystem", "assemble_rotor", "RotorModes", "rotor_modes", "CampbellResult", "CriticalSpeed", "campbell",
            "critical_speeds", "UndampedCriticalSpeeds", "undamped_critical_speeds", "CriticalSpeedMap",
            "critical_speed_map", "Probe", "UnbalanceResponse", "unbalance_response", "required_margin",
            "PointLoad", "StaticResult", "static_deflection", "StabilityResult", "stability_threshold", "Orbits", "mac",
-           "Rub", "RunUp", "RunUpResult", "run_up"]
+           "Rub", "RunUp", "RunUpResult", "run_up", *_LAZY]

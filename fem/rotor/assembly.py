@@ -245,8 +245,21 @@ def _layer_arrays(rotor: Rotor):
     return {k: np.concatenate(v) for k, v in cols.items()}
 
 
-def assemble_rotor(rotor: Rotor) -> RotorSystem:
-    """Assemble ``rotor`` (see the module notes for the DOF numbering and the pattern)."""
+def assemble_rotor(rotor: Rotor, *, nonlinear_bearings: str = "linearised") -> RotorSystem:
+    """Assemble ``rotor`` (see the module notes for the DOF numbering and the pattern).
+
+    Bearings computed from their geometry (``nonlinear`` True: :mod:`fem.rotor.bearings`) enter
+    with their linearised coefficient tables (``nonlinear_bearings = "linearised"``, every linear
+    analysis) or not at all (``"omitted"``: a run-up applies their nonlinear laws instead); a
+    bearing that draws its static load from the rotor's weight gets it first."""
+    if nonlinear_bearings not in ("linearised", "omitted"):
+        raise ValueError(f"nonlinear_bearings = {nonlinear_bearings!r}: 'linearised' or 'omitted'")
+    if nonlinear_bearings == "linearised" and any(getattr(b, "needs_weight_load", False) for b in rotor.bearings):
+        from .bearings.static_load import weight_reactions
+
+        for b, load in zip(rotor.bearings, weight_reactions(rotor)):
+            if getattr(b, "needs_weight_load", False):
+                b.set_weight_load(load)
     fields = rotor.fields
     nf = len(fields)
     # ---------------------------------------------------------------- nodes (couplings cut the shaft)
@@ -410,6 +423,8 @@ def assemble_rotor(rotor: Rotor) -> RotorSystem:
     table_entries = []                # (table number, coefficient slot, i, j, sign)
     tables = []
     for b_no, b in enumerate(rotor.bearings, 1):
+        if nonlinear_bearings == "omitted" and getattr(b, "nonlinear", False):
+            continue
         node = node_at(b.x)
         shaft = (nd["v"][node], nd["w"][node])
         ped = ped_dofs[b.pedestal] if b.pedestal is not None else None
@@ -424,9 +439,13 @@ def assemble_rotor(rotor: Rotor) -> RotorSystem:
         tab = b.table()
         if b.speed_dependent:
             t_no = len(tables)
-            tables.append(SpeedTable(index=b_no, grid=b.speed_grid,
+            kind = getattr(b, "kind", "bearing")
+            number = b_no if kind == "bearing" else \
+                sum(getattr(c, "kind", "bearing") == kind for c in rotor.bearings[:b_no])
+            tables.append(SpeedTable(index=number, grid=b.speed_grid,
                                      values=np.stack([tab[k] for k in BEARING_COEFFICIENTS]),
-                                     interpolation=b.interpolation, extrapolate=b.extrapolate, name=b.name, x=b.x))
+                                     interpolation=b.interpolation, extrapolate=b.extrapolate, name=b.name, x=b.x,
+                                     table=f"rotor.{kind}"))
         for slot, key in enumerate(BEARING_COEFFICIENTS):
             r_, c_ = coeff_slots[key]
             for (i, si) in incid[r_]:

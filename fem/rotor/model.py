@@ -482,8 +482,11 @@ class Rotor:
             dup = next(n for n in names if names.count(n) > 1)
             raise ModelError("[[rotor.pedestal]]", "name", dup, "unique pedestal names")
         used = set()
-        for i, b in enumerate(self.bearings, 1):
-            w = f"[[rotor.bearing]] #{i}"
+        numbers = {}                        # bearings computed from their geometry are numbered per table
+        for b in self.bearings:
+            table = getattr(b, "kind", "bearing")
+            numbers[table] = numbers.get(table, 0) + 1
+            w = f"[[rotor.{table}]] #{numbers[table]}"
             b.check(w)
             on_shaft(b.x, w)
             if b.pedestal is not None:

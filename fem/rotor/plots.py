@@ -240,11 +240,69 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     ax.set_ylabel("orbit radius [mm]")
     ax.legend(fontsize=8)
     ax.set_title(title or f"run-up ({res.method})")
-    ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8, va="top")
-    ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
-    ax2.set_xlabel("speed [rev/min]")
     if res.rubs:
+        ax.text(0.01, 0.97, "dashed: rub clearances (about the stator centres)", transform=ax.transAxes, fontsize=8,
+                va="top")
+    if res.rubs or not res.bearings:
+        ax2.set_ylabel("rub normal force [N]" + (" (impulse/step)" if res.method == "moreau" else ""))
+    else:                                   # bearings computed from their geometry: the journals' eccentricity
+        for b in res.bearings:
+            ax2.plot(s, b.eccentricity, lw=0.8, label=b.name)
+        ax2.set_ylabel("bearing eccentricity ratio e/c [-]")
+        ax.text(0.01, 0.97, "orbit radius about the bearing centres' line (static sag included)", transform=ax.transAxes,
+                fontsize=8, va="top")
+    ax2.set_xlabel("speed [rev/min]")
+    if res.rubs or res.bearings:
         ax2.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_cascade(cas, path, *, onset=None, title: str = "", slices: int = 40, fmax: float | None = None) -> Path:
+    """Waterfall of a run-up: the whirl spectrum of each window (:func:`fem.rotor.whirl_spectrum.cascade`)
+    drawn at the height of its speed (rev/min), forward whirl at positive frequencies (Hz), backward at
+    negative ones, with the 1x and 0.5x lines and the whirl onset (a :class:`WhirlOnset`) marked."""
+    fig, ax = plt.subplots(figsize=(7.5, 6.0))
+    f_hz = cas.frequency / (2 * np.pi)
+    top = float(cas.speed.max()) / (2 * np.pi)
+    fmax = fmax or 1.6 * top
+    keep = np.abs(f_hz) <= fmax
+    pick = np.unique(np.linspace(0, cas.t.size - 1, min(slices, cas.t.size)).astype(int))
+    rpm = cas.speed * RPM
+    span = float(rpm.max() - rpm.min()) or 1.0
+    amp = cas.amplitude[:, keep]
+    scale = 3.0 * span / max(len(pick), 1) / max(float(amp[pick].max()), 1e-300)
+    for i in pick[::-1]:
+        base = rpm[i]
+        y = base + scale * amp[i]
+        ax.fill_between(f_hz[keep], base, y, color="white", zorder=2 * (cas.t.size - i))
+        ax.plot(f_hz[keep], y, color="tab:blue", lw=0.7, zorder=2 * (cas.t.size - i) + 1)
+    ax.plot(rpm / 60.0, rpm, "k--", lw=0.8, label="1x (synchronous)", zorder=10 ** 6)
+    ax.plot(0.5 * rpm / 60.0, rpm, ":", color="0.4", lw=0.8, label="0.5x", zorder=10 ** 6)
+    if onset is not None and onset.onset_speed is not None:
+        ax.axhline(onset.onset_speed * RPM, color="tab:red", lw=0.8,
+                   label=f"whirl onset {onset.onset_speed * RPM:.0f} rev/min ({onset.whirl_frequency / (2 * np.pi):.1f} Hz)",
+                   zorder=10 ** 6)
+    ax.set_xlim(-0.25 * fmax, fmax)
+    ax.set_xlabel("whirl frequency [Hz] (negative: backward)")
+    ax.set_ylabel("speed [rev/min] (spectra offset by their speed)")
+    ax.set_title(title or f"cascade at x = {cas.probe_x:g} m")
+    ax.legend(fontsize=8, loc="lower right")
+    return _save(fig, path)
+
+
+def plot_whirl_onset(res, onset, path, *, title: str = "") -> Path:
+    """The subsynchronous whirl amplitude (band-passed envelope) against speed, log scale, with the
+    onset (its minimum) marked."""
+    fig, ax = plt.subplots(figsize=(7.5, 4.2))
+    s = res.speed * RPM
+    ax.semilogy(s, 1e6 * onset.envelope, lw=0.8)
+    if onset.onset_speed is not None:
+        ax.axvline(onset.onset_speed * RPM, color="tab:red", lw=0.8, label=f"onset {onset.onset_speed * RPM:.0f} rev/min")
+        ax.legend(fontsize=8)
+    ax.set_xlabel("speed [rev/min]")
+    ax.set_ylabel("subsynchronous whirl amplitude [µm]")
+    ax.set_title(title or f"whirl at x = {onset.probe_x:g} m: band {onset.band[0] / (2 * np.pi):.0f}-"
+                 f"{onset.band[1] / (2 * np.pi):.0f} Hz")
     return _save(fig, path)
 
 
@@ -257,8 +315,9 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
     ends = np.linspace(n // windows, n - 1, windows).astype(int)
     x = res.probe_x[probe]
     rub = next((r for r in res.rubs if abs(r.x - x) < 1e-12), None)
+    brg = next((b for b in getattr(res, "bearings", []) if abs(b.x - x) < 1e-12), None)
     lim = 1e3 * max(np.hypot(res.orbit_y[:, probe], res.orbit_z[:, probe]).max(initial=0.0),
-                    rub.clearance + math.hypot(*rub.centre) if rub else 0.0) * 1.1 or 1.0
+                    rub.clearance + math.hypot(*rub.centre) if rub else 0.0, brg.clearance if brg else 0.0) * 1.1 or 1.0
     for ax, k in zip(axes, ends):
         revs = 3 * 2 * np.pi / max(res.speed[k], 1e-12)
         sel = (res.t > res.t[k] - revs) & (res.t <= res.t[k])
@@ -267,11 +326,15 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
             a = np.linspace(0, 2 * np.pi, 200)
             ax.plot(1e3 * (rub.centre[0] + rub.clearance * np.cos(a)), 1e3 * (rub.centre[1] + rub.clearance * np.sin(a)),
                     "k--", lw=0.8)
+        if brg is not None and rub is None:         # the bearing's clearance circle (journal relative to it)
+            a = np.linspace(0, 2 * np.pi, 200)
+            ax.plot(1e3 * brg.clearance * np.cos(a), 1e3 * brg.clearance * np.sin(a), "k--", lw=0.8)
         ax.set_aspect("equal")
         ax.set_xlim(-lim, lim)
         ax.set_ylim(-lim, lim)
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
     axes[0].set_ylabel("z [mm]")
-    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)", fontsize=10)
+    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)"
+                 + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)

@@ -38,6 +38,7 @@ class ReducedRotor:
     ``restitution`` the restored static flexibility per contact DOF; ``warnings``."""
 
     system: RotorSystem
+    basis_system: RotorSystem | None
     T: np.ndarray
     omega: np.ndarray
     n_modes: int
@@ -55,6 +56,11 @@ class ReducedRotor:
     @property
     def n(self) -> int:
         return self.T.shape[1]
+
+    @property
+    def basis_stiffness(self) -> np.ndarray:
+        """T^T K_s T = diag(omega^2): the stiffness the basis was built on (projected)."""
+        return np.diag(self.omega ** 2)
 
     def rows(self, dofs) -> np.ndarray:
         """Rows of T for full DOF indices: the reduced vectors b with q_j = b . eta."""
@@ -90,9 +96,12 @@ class ReducedRotor:
 
     def frequency_check(self, speed: float, n_compare: int) -> dict:
         """Complex eigenvalues of the reduced rotor against the full rotor's at ``speed``: the
-        lowest ``n_compare`` pairs; relative error |lam_r - lam| / |lam| per mode."""
+        lowest ``n_compare`` pairs; relative error |lam_r - lam| / |lam| per mode.  With nonlinear
+        bearings (a ``basis_system``), both sides carry their linearised coefficients."""
         from .modal import rotor_modes
 
+        if self.basis_system is not None:
+            return _linearised_check(self, speed, n_compare)
         full = rotor_modes(self.system, speed, n_compare)
         K, C = self.matrices(speed)
         n = self.n
@@ -114,6 +123,30 @@ class ReducedRotor:
                                  for j in self.contact_dofs.ravel()],
                 "restitution": [float(r) if np.isfinite(r) else None for r in self.restitution],
                 "warnings": list(self.warnings)}
+
+
+def _linearised_check(red: "ReducedRotor", speed: float, n_compare: int) -> dict:
+    """:meth:`ReducedRotor.frequency_check` on the linearised rotor (``basis_system``), at the speed
+    clipped into its bearing tables."""
+    from .modal import rotor_modes
+
+    bs = red.basis_system
+    if bs.tables:
+        lo, hi = max(t.grid[0] for t in bs.tables), min(t.grid[-1] for t in bs.tables)
+        speed = float(min(max(speed, lo), hi))
+    full = rotor_modes(bs, speed, n_compare)
+    T = red.T
+    K = T.T @ (bs.stiffness(speed) @ T)
+    C = T.T @ ((bs.damping(speed) + speed * bs.G) @ T)
+    n = red.n
+    lam = sla.eigvals(np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]]))
+    lam = lam[lam.imag >= 0]
+    top = float(np.abs(full.eigenvalues).max(initial=0.0))
+    err = [float(np.min(np.abs(lam - lf)) / max(abs(lf), 1e-8 * top, 1e-300)) for lf in full.eigenvalues]
+    return {"speed_rad_s": float(speed), "linearised_bearings": True,
+            "full_eigenvalues_real": full.eigenvalues.real.tolist(),
+            "full_eigenvalues_imag": full.eigenvalues.imag.tolist(), "relative_error": err,
+            "max_relative_error": float(max(err)) if err else 0.0}
 
 
 def _symmetric(A: sp.spmatrix) -> sp.csr_matrix:
@@ -146,12 +179,19 @@ def _modes_by_flexibility(Kff, Mff, lu, k: int) -> tuple[np.ndarray, np.ndarray]
     return V[:, finite], 1.0 / mu[finite]
 
 
-def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_speed: float = 0.0) -> ReducedRotor:
+def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_speed: float = 0.0,
+                 basis_system: RotorSystem | None = None, basis_speed: float | None = None) -> ReducedRotor:
     """The reduced rotor of ``rs``: ``n_modes`` modes at rest (bearings at ``reference_speed``)
-    plus the static shapes of unit loads on the ``contact_dofs`` ((m, 2) pairs of v, w DOFs)."""
+    plus the static shapes of unit loads on the ``contact_dofs`` ((m, 2) pairs of v, w DOFs).
+
+    ``basis_system``: the same rotor with its nonlinear bearings linearised (same DOFs), whose
+    stiffness the basis is built on when ``rs`` omits them (a run-up applies their laws), at
+    ``basis_speed`` (default: ``reference_speed``)."""
     contact_dofs = np.asarray(contact_dofs, dtype=int).reshape(-1, 2)
-    Ks = _symmetric(rs.stiffness(reference_speed))
-    base = rs.system_at(reference_speed)
+    bs = rs if basis_system is None else basis_system
+    s_basis = reference_speed if basis_speed is None else basis_speed
+    Ks = _symmetric(bs.stiffness(s_basis))
+    base = bs.system_at(s_basis)
     free = base.free
     n_free = free.size
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n_free:
@@ -209,6 +249,6 @@ def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_spe
         Kc = np.stack([P(A) for A in columns(rs._Bk)])
         Cc = np.stack([P(A) for A in columns(rs._Bc)])
     K0, C0 = P(rs.K0), P(rs.C0)
-    return ReducedRotor(system=rs, T=T, omega=np.sqrt(w2), n_modes=int(mode_shapes.shape[1]),
+    return ReducedRotor(system=rs, basis_system=basis_system, T=T, omega=np.sqrt(w2), n_modes=int(mode_shapes.shape[1]),
                         contact_dofs=contact_dofs, restitution=np.asarray(restitution), reference_speed=float(reference_speed),
                         K0=K0, C0=C0, G=P(rs.G), Kc=Kc, Cc=Cc, warnings=warnings)

@@ -20,6 +20,7 @@ from discrete import checks
 from discrete.errors import ModelError
 from discrete.nonsmooth.elements.radial import RadialClearance
 
+from . import nonlinear_bearings as nlb
 from .assembly import RotorSystem
 from .modal import as_system
 from .reduced import ReducedRotor, reduce_rotor
@@ -27,6 +28,7 @@ from .transient import (WORKS, SpeedRamp, Trajectory, UnbalanceLoad, check_rigid
                         integrate_moreau)
 
 METHODS = ("event", "moreau")
+INTEGRATORS = ("auto", "DOP853", "LSODA")
 STARTS = ("steady", "rest")
 
 
@@ -58,8 +60,11 @@ class RunUp:
     retained modes at rest (plus 2 attachment shapes per rub); ``time_step`` of Moreau-Jean (None:
     a 40th of the shortest retained period); ``output_step`` (None: a 64th of the shortest
     revolution, at most 20 000 samples); ``rtol`` of the event-located integrator; ``start``
-    "steady" (the linear synchronous response at ``speed_start``, no contact force) or "rest";
-    ``max_events``: a chattering contact stops the run beyond this many events."""
+    "steady" (the linear synchronous response at ``speed_start``, no contact force; on bearings
+    computed from their geometry about their static state, with their laws linearised there) or "rest";
+    ``max_events``: a chattering contact stops the run beyond this many events; ``integrator`` of
+    ``method = "event"``: "DOP853" (explicit), "LSODA" (stiff phases by BDF), "auto" (LSODA when
+    bearings computed from their geometry act, whose films are stiff on light journals; else DOP853)."""
 
     speed_start: float
     speed_end: float
@@ -71,6 +76,7 @@ class RunUp:
     rtol: float = 1e-8
     start: str = "steady"
     max_events: int = 100_000
+    integrator: str = "auto"
 
     def check(self) -> None:
         where = "[run_up]"
@@ -84,6 +90,7 @@ class RunUp:
                             "s: a step no longer than the duration")
         checks.bounded(where, "rtol", self.rtol, (">=", 1e-13), ("<=", 1e-3), "relative tolerance")
         checks.integer(where, "max_events", self.max_events, 1)
+        checks.choice(where, "integrator", self.integrator, INTEGRATORS)
 
 
 @dataclass
@@ -121,7 +128,8 @@ class RunUpResult:
     """A run-up: samples ``t`` (s) and ``speed`` (rad/s), orbits ``orbit_y``/``orbit_z`` (m) at
     ``probe_x``, the ``rubs``, the ``events`` (contact, separation, stick, slip, ...), the energy
     balance (``works``, ``energy_start``/``energy_end``, ``energy_error`` relative to the largest
-    term), the reduction report, ``stopped`` (None: reached the end; else why not)."""
+    term), the reduction report, ``stopped`` (None: reached the end; else why not); ``bearings``: the
+    histories of the bearings computed from their geometry (their nonlinear laws acted in the run)."""
 
     t: np.ndarray
     speed: np.ndarray
@@ -140,6 +148,8 @@ class RunUpResult:
     steps: int
     wall_time: float
     warnings: list = field(default_factory=list)
+    bearings: list = field(default_factory=list)
+    integrator: str = "DOP853"
 
     def to_dict(self, samples: bool = False) -> dict:
         out = {"method": self.method, "t_end": float(self.t[-1]) if self.t.size else 0.0,
@@ -152,6 +162,10 @@ class RunUpResult:
                "peak_amplitude": {f"{x:g}": float(np.hypot(self.orbit_y[:, k], self.orbit_z[:, k]).max(initial=0.0))
                                   for k, x in enumerate(self.probe_x)},
                "reduction": self.reduction, "warnings": list(self.warnings)}
+        if self.bearings:
+            out["bearings"] = [b.to_dict() for b in self.bearings]
+        if self.method == "event" and (self.bearings or self.integrator != "DOP853"):
+            out["integrator"] = self.integrator
         if samples:
             out["samples"] = {"t": self.t.tolist(), "speed_rad_s": self.speed.tolist(),
                               "orbit_y": self.orbit_y.T.tolist(), "orbit_z": self.orbit_z.T.tolist()}
@@ -225,11 +239,22 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     run.check()
     rubs = list(rubs)
     ramp = SpeedRamp(float(run.speed_start), float(run.speed_end), float(run.duration))
-    if rs.tables:                                           # bearing tables must cover the ramp
-        rs.coefficients([ramp.start, ramp.end])
+    nonlinear = nlb.nonlinear_bearings(rs)
+    dyn = nlb.dynamic_system(rs) if nonlinear else rs
+    if dyn.tables:                                          # bearing tables must cover the ramp
+        dyn.coefficients([ramp.start, ramp.end])
     contact_dofs = [(rs.dof(r.x, "v", f"[[rub]] #{i}"), rs.dof(r.x, "w", f"[[rub]] #{i}")) for i, r in enumerate(rubs, 1)]
-    red = reduce_rotor(rs, np.array(contact_dofs, dtype=int).reshape(-1, 2), run.modes, reference_speed=ramp.start)
+    if nonlinear:
+        lo = max((t.grid[0] for t in rs.tables), default=ramp.start)
+        hi = min((t.grid[-1] for t in rs.tables), default=ramp.start)
+        red = reduce_rotor(dyn, np.array(contact_dofs + nlb.bearing_dofs(rs, nonlinear), dtype=int).reshape(-1, 2),
+                           run.modes, reference_speed=ramp.start, basis_system=rs, basis_speed=min(max(ramp.start, lo), hi))
+    else:
+        red = reduce_rotor(rs, np.array(contact_dofs, dtype=int).reshape(-1, 2), run.modes, reference_speed=ramp.start)
     laws = _laws(rs, red, rubs)
+    smooth = nlb.elements(rs, red.T, nonlinear)
+    f_static = nlb.static_load(rs, nonlinear) if nonlinear else None
+    static = None if f_static is None else red.T.T @ f_static
     check_rigid(laws, run.method)
     # unbalance forces in reduced coordinates
     A_y = np.zeros(red.n, complex)
@@ -244,8 +269,14 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     v0 = np.zeros(red.n)
     if run.start == "steady" and ramp.start > 0:
         K, C = red.matrices(ramp.start)
+        eta_s = np.zeros(red.n)
+        if smooth:                          # the static state on the nonlinear bearings, and their linearisation
+            rhs = np.zeros(red.n) if static is None else static
+            eta_s = nlb.equilibrium(K, smooth, rhs, ramp.start, np.linalg.solve(red.basis_stiffness, rhs))
+            Kb, Cb = nlb.linearised(smooth, eta_s, np.zeros(red.n), ramp.start)
+            K, C = K + Kb, C + Cb
         Y = np.linalg.solve(K - ramp.start ** 2 * np.eye(red.n) + 1j * ramp.start * C, load.steady_amplitude(ramp.start))
-        eta0, v0 = Y.real.copy(), -ramp.start * Y.imag
+        eta0, v0 = eta_s + Y.real, -ramp.start * Y.imag
         for c in laws:
             rho = float(c.relative(c.g_y @ eta0, c.g_z @ eta0)[2])
             if c.rigid and rho > c.clearance:
@@ -270,11 +301,14 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
         estimate, note = ramp.duration / h, f"Moreau-Jean steps of {h:.3g} s"
     if check_steps is not None:
         check_steps(estimate, note)
+    integrator = run.integrator if run.integrator != "auto" else ("LSODA" if smooth else "DOP853")
     if run.method == "event":
         traj: Trajectory = integrate_compliant(red, ramp, load, laws, eta0, v0, t_out, rtol=run.rtol,
-                                               max_events=run.max_events, progress=progress)
+                                               max_events=run.max_events, progress=progress, smooth=smooth,
+                                               static=static, integrator=integrator)
     else:
-        traj = integrate_moreau(red, ramp, load, laws, eta0, v0, t_out, h, progress=progress)
+        traj = integrate_moreau(red, ramp, load, laws, eta0, v0, t_out, h, progress=progress, smooth=smooth,
+                                static=static)
     # outputs
     if probes is None:
         xs = sorted({float(r.x) for r in rubs} | {float(d.x) for d in rs.rotor.discs}
@@ -289,9 +323,10 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     for j, (r, c) in enumerate(zip(rubs, laws)):
         y, z = traj.eta @ c.g_y, traj.eta @ c.g_z
         rho = c.relative(y, z)[2]
-        first = next((e for e in traj.events if e["rub"] == c.name and e["kind"] == "contact"), None)
-        if first is None and traj.in_contact[:1, j].any():
+        if traj.in_contact[:1, j].any():            # in contact from the start: that is the first contact
             first = {"t": 0.0, "kind": "contact", "rub": c.name, "speed_rad_s": float(ramp.start)}
+        else:
+            first = next((e for e in traj.events if e["rub"] == c.name and e["kind"] == "contact"), None)
         regime = _regime(traj.t, speed, traj.in_contact[:, j])
         hist.append(RubHistory(name=c.name, x=float(r.x), clearance=c.clearance, centre=c.centre, normal_force=traj.normal_force[:, j],
                                slip=traj.slip[:, j], in_contact=traj.in_contact[:, j], radius=rho, regime=regime,
@@ -315,7 +350,9 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     return RunUpResult(t=traj.t, speed=speed, probe_x=np.array(xs), orbit_y=orbit_y, orbit_z=orbit_z, rubs=hist,
                        events=traj.events, works=dict(traj.works), energy_start=traj.energy_start,
                        energy_end=traj.energy_end, energy_error=float(err), reduction=reduction, method=run.method,
-                       stopped=traj.stopped, steps=traj.steps, wall_time=time.perf_counter() - wall, warnings=warnings)
+                       stopped=traj.stopped, steps=traj.steps, wall_time=time.perf_counter() - wall, warnings=warnings,
+                       bearings=nlb.histories(rs, nonlinear, smooth, traj.eta, traj.eta_dot, speed,
+                                              ramp.angle(traj.t)) if nonlinear else [], integrator=integrator)
 
 
 __all__ = ["Rub", "RunUp", "RunUpResult", "RubHistory", "run_up", "METHODS", "WORKS"]

@@ -42,19 +42,20 @@ class SpeedTable:
     interpolation: str = "linear"
     extrapolate: str = "refuse"
     name: str = ""
+    table: str = "rotor.bearing"    # the model-file table the bearing is written in (for messages)
     x: float = 0.0
     _curve: object = field(default=None, repr=False)
     _warned: list = field(default_factory=lambda: [np.inf, -np.inf], repr=False)
 
     @property
     def where(self) -> str:
-        return f"[[rotor.bearing]] #{self.index}"
+        return f"[[{self.table}]] #{self.index}"
 
     @property
     def label(self) -> str:
         """The bearing as a warning names it: number, name, position."""
         name = f" {self.name!r}" if self.name else ""
-        return f"[[rotor.bearing]] #{self.index}{name} at x = {self.x:g} m"
+        return f"[[{self.table}]] #{self.index}{name} at x = {self.x:g} m"
 
     def _interpolant(self):
         if self._curve is None:

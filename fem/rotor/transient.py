@@ -25,7 +25,11 @@ bearing stiffness changing along the ramp), ``contact_loss`` (contact damping; i
 ``friction`` (friction on the lateral motion); ``spin_friction`` is the friction's work on the spin
 (the braking torque mu N R times Omega: the drive makes it up; not part of the lateral balance);
 ``projection`` the strain-energy change of Moreau-Jean's position projection onto the clearance
-circles (a numerical term: it shrinks with the step).
+circles (a numerical term: it shrinks with the step); ``bearings`` the work of the smooth planar
+elements (fluid films, rolling-element clearance laws: :class:`SmoothPlanarElement`, evaluated at
+every state; Moreau-Jean takes their force at the step's predicted midpoint, explicitly);
+``static_load`` the work of the constant load (the weight the bearings carry).  The last two are
+reported only when the run has such elements or loads.
 """
 from __future__ import annotations
 
@@ -38,7 +42,9 @@ from scipy.integrate import solve_ivp
 
 from discrete.errors import SolverError
 
-WORKS = ("unbalance", "damping", "circulatory", "parametric", "contact_loss", "friction", "spin_friction", "projection")
+WORKS = ("unbalance", "damping", "circulatory", "parametric", "contact_loss", "friction", "spin_friction", "projection",
+         "bearings", "static_load")
+_OPTIONAL_WORKS = ("bearings", "static_load")
 
 
 @dataclass
@@ -106,15 +112,42 @@ def _mechanical(eta, v, Ks) -> float:
 class _Model:
     """The reduced rotor's forces at (t, eta, eta') with the contacts' kinematics."""
 
-    def __init__(self, red, ramp: SpeedRamp, load: UnbalanceLoad, contacts):
+    def __init__(self, red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, smooth=(), static=None):
         self.red, self.ramp, self.load, self.contacts = red, ramp, load, list(contacts)
         self.n = red.n
         self.by = np.array([c.g_y for c in self.contacts]).reshape(-1, self.n)
         self.bz = np.array([c.g_z for c in self.contacts]).reshape(-1, self.n)
+        self.smooth = list(smooth)
+        self.sy = np.array([e.g_y for e in self.smooth]).reshape(-1, self.n)
+        self.sz = np.array([e.g_z for e in self.smooth]).reshape(-1, self.n)
+        self.static = None if static is None else np.asarray(static, dtype=float)
+        # the work categories of this run (an optional one only when present: the state vector, hence the
+        # integrator's error norm and steps, of a run without them is as before they existed)
+        self.work_keys = [k for k in WORKS if k not in _OPTIONAL_WORKS or (k == "bearings" and self.smooth)
+                          or (k == "static_load" and self.static is not None)]
+        self.windex = {k: i for i, k in enumerate(self.work_keys)}
         self.const = not red.Kc.shape[0]
         if self.const:
             self.K, self.C = red.K0, red.C0
             self.Ks, self.Kskew, self.Cs = self._parts(self.K, self.C)
+
+    def smooth_forces(self, t: float, eta, v):
+        """(reduced force of the smooth planar elements, their power) at (t, eta, eta')."""
+        f = np.zeros(self.n)
+        power = 0.0
+        if not self.smooth:
+            return f, power
+        Om, phi = self.ramp.speed(t), self.ramp.angle(t)
+        y, z, yd, zd = self.sy @ eta, self.sz @ eta, self.sy @ v, self.sz @ v
+        for j, e in enumerate(self.smooth):
+            Fy, Fz = e.force(y[j], z[j], yd[j], zd[j], Om, phi)
+            f += Fy * self.sy[j] + Fz * self.sz[j]
+            power += Fy * yd[j] + Fz * zd[j]
+        return f, power
+
+    def works(self, values) -> dict:
+        """The work dictionary, without the optional categories this run does not have."""
+        return dict(zip(self.work_keys, (float(w) for w in values)))
 
     @staticmethod
     def _parts(K, C):
@@ -167,13 +200,17 @@ def _started(fns, t0, Y0):
 
 
 def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, v0, t_out: np.ndarray, *,
-                        rtol: float = 1e-8, max_events: int = 100_000, progress=None) -> Trajectory:
-    """Event-located integration of compliant contacts (see the module docstring)."""
-    mdl = _Model(red, ramp, load, contacts)
+                        rtol: float = 1e-8, max_events: int = 100_000, progress=None, smooth=(),
+                        static=None, integrator: str = "DOP853") -> Trajectory:
+    """Event-located integration of compliant contacts (see the module docstring); ``smooth``:
+    smooth planar elements, ``static``: a constant reduced load; ``integrator`` "DOP853" (explicit,
+    order 8) or "LSODA" (switches to BDF where the problem is stiff: fluid films on light journals,
+    whose damping over the journal's mass sets the explicit step)."""
+    mdl = _Model(red, ramp, load, contacts, smooth, static)
     n, nc = mdl.n, len(mdl.contacts)
     by, bz, cs = mdl.by, mdl.bz, mdl.contacts
     t_end = ramp.duration
-    nw = len(WORKS)
+    nw = len(mdl.work_keys)
 
     def local(j, eta, v):
         return by[j] @ eta, bz[j] @ eta, by[j] @ v, bz[j] @ v
@@ -197,6 +234,12 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
                 Ft = -c.friction * N * modes[j]
                 dW[5] += Ft * (vs - Om * c.radius)
                 dW[6] += Ft * Om * c.radius
+        if mdl.smooth:
+            fb, dW[mdl.windex["bearings"]] = mdl.smooth_forces(t, eta, v)
+            f += fb
+        if mdl.static is not None:
+            f += mdl.static
+            dW[mdl.windex["static_load"]] = v @ mdl.static
         dW[0] = v @ fu
         dW[1] = -v @ Cs @ v
         dW[2] = -v @ Kskew @ eta
@@ -236,11 +279,14 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
     # absolute tolerances: positions on the scale of the clearances (or of the start), velocities at the
     # top speed; the work integrals are not error-controlled (their error is what the balance shows)
     s_eta = max([float(np.abs(eta0).max(initial=0.0))] + [c.clearance / max(np.abs(by[j]).max(), np.abs(bz[j]).max(), 1e-300)
-                                                           for j, c in enumerate(cs)] + [1e-12])
+                                                           for j, c in enumerate(cs)]
+                + [e.scale / max(np.abs(mdl.sy[j]).max(), np.abs(mdl.sz[j]).max(), 1e-300)
+                   for j, e in enumerate(mdl.smooth)] + [1e-12])
     s_v = max(float(np.abs(v0).max(initial=0.0)), s_eta * max(ramp.start, ramp.end, red.omega.min(initial=1.0)))
     atol = np.concatenate([np.full(n, rtol * s_eta), np.full(n, rtol * s_v), np.full(nw, 1e30)])
     ts, Ys, modes_at, events, steps, t, stopped = [], [], [], [], 0, 0.0, None
-    max_step = 2 * math.pi / max(red.omega.max(), ramp.end, 1e-12)
+    max_step = 2 * math.pi / max(red.omega.max() if integrator == "DOP853" else 8 * max(ramp.start, ramp.end),
+                                 ramp.end, 1e-12)
     chunk = t_end / 50                  # the integration restarts at least every 2 % (progress, bounded memory)
     while t < t_end:
         t_stop = t_end if t_end - t <= 1.5 * chunk else t + chunk
@@ -249,7 +295,7 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
         extra = not np.any(t_out == t_stop)          # t_stop is sampled to carry the state on, not an output
         fns = _started(guards(modes), t, Y)
         held = list(modes)
-        sol = solve_ivp(lambda tt, YY: rhs(tt, YY, held), (t, t_stop), Y, method="DOP853", t_eval=te,
+        sol = solve_ivp(lambda tt, YY: rhs(tt, YY, held), (t, t_stop), Y, method=integrator, t_eval=te,
                         events=fns or None, rtol=rtol, atol=atol, max_step=max_step)
         steps += int(sol.nfev)
         if sol.status == -1:
@@ -308,7 +354,7 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
         y, z, yd, zd = eta_h @ by[j], eta_h @ bz[j], v_h @ by[j], v_h @ bz[j]
         N[:, j] = np.where(modes_h[:, j] != 0, c.normal_force(y, z, yd, zd), 0.0)
         slip[:, j] = c.slip_velocity(y, z, yd, zd, ramp.speed(T))
-    works = dict(zip(WORKS, (float(w) for w in Y[2 * n:])))
+    works = mdl.works(Y[2 * n:])
     E1 = mdl.energy(t, Y[:n], Y[n:2 * n], modes)
     return Trajectory(t=T, eta=eta_h, eta_dot=v_h, normal_force=N, slip=slip, in_contact=modes_h != 0, events=events,
                       works=works, energy_start=E0, energy_end=E1, stopped=stopped, steps=steps,
@@ -317,9 +363,10 @@ def integrate_compliant(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta
 
 # ------------------------------------------------------------------ rigid contacts: Moreau-Jean
 def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, v0, t_out: np.ndarray, h: float, *,
-                     progress=None) -> Trajectory:
-    """Moreau-Jean (theta = 1/2) with rigid radial contacts (see the module docstring)."""
-    mdl = _Model(red, ramp, load, contacts)
+                     progress=None, smooth=(), static=None) -> Trajectory:
+    """Moreau-Jean (theta = 1/2) with rigid radial contacts (see the module docstring); ``smooth``
+    planar elements explicitly at the predicted midpoint, ``static`` a constant reduced load."""
+    mdl = _Model(red, ramp, load, contacts, smooth, static)
     n, nc = mdl.n, len(mdl.contacts)
     by, bz, cs = mdl.by, mdl.bz, mdl.contacts
     t_end = ramp.duration
@@ -327,7 +374,7 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
     h = t_end / steps
     out_idx = np.unique(np.clip(np.rint(t_out / h).astype(int), 0, steps))
     q, v = np.array(eta0, float), np.array(v0, float)
-    works = dict.fromkeys(WORKS, 0.0)
+    works = mdl.works(np.zeros(len(mdl.work_keys)))
     rec_t, rec_q, rec_v, rec_N, rec_s, rec_c = [], [], [], [], [], []
     state = ["free"] * nc
     events = []
@@ -363,7 +410,12 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
         A = np.eye(n) + 0.5 * h * C + 0.25 * h * h * K
         lu = sla.lu_factor(A)
         f = load(tm)
-        v_free = sla.lu_solve(lu, v - 0.5 * h * (C @ v) - h * (K @ q) - 0.25 * h * h * (K @ v) + h * f)
+        fx = None
+        if mdl.smooth or mdl.static is not None:
+            fb, _ = mdl.smooth_forces(tm, q + 0.5 * h * v, v)
+            fx = fb + (mdl.static if mdl.static is not None else 0.0)
+        v_free = sla.lu_solve(lu, v - 0.5 * h * (C @ v) - h * (K @ q) - 0.25 * h * h * (K @ v) + h * (f if fx is None
+                                                                                                      else f + fx))
         # index set: contacts whose position predicted half a step ahead is at or beyond the clearance
         qp = q + 0.5 * h * v
         Hs, Ws, Ufree, un0, active = [], [], [], [], []
@@ -401,6 +453,11 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
         q_new = q + h * vm
         qm = 0.5 * (q + q_new)
         works["unbalance"] += h * vm @ f
+        if fx is not None:
+            if mdl.smooth:
+                works["bearings"] += h * vm @ fb
+            if mdl.static is not None:
+                works["static_load"] += h * vm @ mdl.static
         works["damping"] -= h * vm @ Cs @ vm
         works["circulatory"] -= h * vm @ Kskew @ qm
         last_P[:] = 0.0
@@ -449,8 +506,8 @@ def integrate_moreau(red, ramp: SpeedRamp, load: UnbalanceLoad, contacts, eta0, 
             progress(t1 / t_end)
     E_now = _mechanical(q, v, Ks_prev)         # steps >= 1: Ks_prev is the last step's stiffness
     return Trajectory(t=np.array(rec_t), eta=np.array(rec_q).reshape(-1, n), eta_dot=np.array(rec_v).reshape(-1, n),
-                      normal_force=np.array(rec_N).reshape(-1, nc), slip=np.array(rec_s).reshape(-1, nc),
-                      in_contact=np.array(rec_c, dtype=bool).reshape(-1, nc), events=events, works=works,
+                      normal_force=np.array(rec_N).reshape(len(rec_t), nc), slip=np.array(rec_s).reshape(len(rec_t), nc),
+                      in_contact=np.array(rec_c, dtype=bool).reshape(len(rec_t), nc), events=events, works=works,
                       energy_start=E0, energy_end=E_now, stopped=None, steps=steps,
                       max_penetration=np.maximum(pen, 0.0),
                       warnings=[f"{unconverged} steps where the block Gauss-Seidel over simultaneous contacts did not "

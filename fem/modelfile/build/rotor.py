@@ -62,6 +62,53 @@ def _bearing(b) -> Bearing:
                    pedestal=b.pedestal, name=b.name, **coeff)
 
 
+def _journal(b, where: str):
+    from ...rotor.bearings.journal import JournalBearing
+
+    if b.speeds is not None:
+        speeds = list(b.speeds)
+    elif isinstance(b.speeds_rpm, list):
+        speeds = [v * RPM for v in b.speeds_rpm]
+    else:
+        g = b.speeds_rpm
+        budget.check_count(where, "speeds_rpm.points", g.points, 2000, "table speeds", g.points)
+        speeds = list(np.linspace(g.start, g.stop, g.points) * RPM)
+    budget.check_count(where, "speeds", len(speeds), 2000, "table speeds", len(speeds))
+    budget.check_count(where, "mesh", b.mesh[0] * b.mesh[1], 400_000, "film elements", b.mesh)
+    return JournalBearing(x=b.x, diameter=b.diameter, length=b.length, clearance=b.clearance, viscosity=b.viscosity,
+                          load=b.load, load_angle=math.radians(b.load_angle_deg), film=b.film, cavitation=b.cavitation,
+                          grooves=tuple((math.radians(c), math.radians(w)) for c, w in b.grooves_deg),
+                          mesh=tuple(b.mesh), speeds=speeds, interpolation=b.interpolation, pedestal=b.pedestal,
+                          name=b.name)
+
+
+def _rolling(b):
+    from ...rotor.bearings.rolling import RollingBearing
+
+    return RollingBearing(x=b.x, element=b.element, elements=b.elements, element_diameter=b.element_diameter or 0.0,
+                          pitch_diameter=b.pitch_diameter or 0.0, contact_angle=math.radians(b.contact_angle_deg),
+                          clearance=b.clearance, inner_conformity=b.inner_conformity,
+                          outer_conformity=b.outer_conformity, roller_length=b.roller_length, modulus=b.modulus,
+                          poisson=b.poisson, contact_stiffness=b.contact_stiffness, damping=b.damping, load=b.load,
+                          load_angle=math.radians(b.load_angle_deg), pedestal=b.pedestal, name=b.name)
+
+
+def _damper(b):
+    from ...rotor.bearings.squeeze_film import SqueezeFilmDamper
+
+    return SqueezeFilmDamper(x=b.x, diameter=b.diameter, length=b.length, clearance=b.clearance,
+                             viscosity=b.viscosity, film=b.film, centering_stiffness=b.centering_stiffness, load=b.load,
+                             load_angle=math.radians(b.load_angle_deg), pedestal=b.pedestal, name=b.name)
+
+
+def _geometry_bearings(r) -> list:
+    """[[rotor.journal_bearing]], [[rotor.rolling_bearing]], [[rotor.squeeze_film_damper]] -> bearings."""
+    out = [_journal(b, f"[[rotor.journal_bearing]] #{i}") for i, b in enumerate(r.journal_bearing, 1)]
+    out += [_rolling(b) for b in r.rolling_bearing]
+    out += [_damper(b) for b in r.squeeze_film_damper]
+    return out
+
+
 def rotor_model(doc) -> Rotor:
     """The :class:`Rotor` a file describes (checked by the dataclasses; sizes checked up front)."""
     r = doc.rotor
@@ -82,7 +129,7 @@ def rotor_model(doc) -> Rotor:
                                              for j, q in enumerate(s.layer, 1)]))
     rho = r.material.rho if r.material is not None else None
     discs = [_disc(d, rho, f"[[rotor.disc]] #{i}") for i, d in enumerate(r.disc, 1)]
-    return Rotor(segments=segments, discs=discs, bearings=[_bearing(b) for b in r.bearing],
+    return Rotor(segments=segments, discs=discs, bearings=[_bearing(b) for b in r.bearing] + _geometry_bearings(r),
                  pedestals=[Pedestal(name=p.name, mass=p.mass, kyy=p.kyy, kzz=p.kzz, cyy=p.cyy, czz=p.czz)
                             for p in r.pedestal],
                  couplings=[Coupling(x=c.x, k_lateral=c.k_lateral, k_angular=c.k_angular, k_axial=c.k_axial,
@@ -184,7 +231,8 @@ def run_up_spec(doc) -> RunUpSpec:
     start = t.speed_start if t.speed_start_rpm is None else t.speed_start_rpm * RPM
     end = t.speed_end if t.speed_end_rpm is None else t.speed_end_rpm * RPM
     run = RunUp(speed_start=float(start), speed_end=float(end), duration=t.duration, method=t.method, modes=t.modes,
-                time_step=t.time_step, output_step=t.output_step, rtol=t.rtol, start=t.start, max_events=t.max_events)
+                time_step=t.time_step, output_step=t.output_step, rtol=t.rtol, start=t.start, max_events=t.max_events,
+                integrator=t.integrator)
     if t.method == "moreau":
         h = t.time_step
         if h is not None:
@@ -199,7 +247,8 @@ def run_up_spec(doc) -> RunUpSpec:
         if t.method == "moreau" and r.stiffness is not None:
             raise ModelError(f"[[rub]] #{i}", "stiffness", r.stiffness, "no stiffness with [run_up] method = 'moreau' "
                              "(rigid contacts with restitution; or method = 'event' for compliant contacts)")
-    if not unb and not rubs:
+    geometry = doc.rotor.journal_bearing or doc.rotor.rolling_bearing or doc.rotor.squeeze_film_damper
+    if not unb and not rubs and not geometry:
         raise ModelError("model file (rotor)", "unbalance", [], "at least one [[unbalance]] or [[rub]] for drivefem "
                          "simulate (without either the rotor stays at rest)")
     return RunUpSpec(run=run, unbalances=unb, rubs=rubs)

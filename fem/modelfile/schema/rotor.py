@@ -14,7 +14,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Count, Fraction, NonNegative, Positive, Table, rule
+from .base import Count, Fraction, NonNegative, Pair, Positive, Table, rule
 
 Coefficient = float | Annotated[list[float], Field(min_length=2)]
 
@@ -208,6 +208,128 @@ class RotorBearing(Table):
         return self
 
 
+class RotorJournalBearing(Table):
+    """``[[rotor.journal_bearing]]``: a plain (cylindrical) journal bearing computed from its geometry:
+    the isoviscous Reynolds equation of the film over the bearing surface (scikit-fem; cavitation by
+    Reynolds' (Swift-Stieber) condition, or Guembel's), the operating point under the static load at
+    every table speed and the 8 coefficients there (modal, campbell, forced use the table; a run-up,
+    drivefem simulate, applies the nonlinear film force instead)."""
+
+    x: float
+    """Position along the shaft, m (a node)."""
+    diameter: Positive
+    """Journal diameter D, m."""
+    length: Positive
+    """Bearing length L, m."""
+    clearance: Positive
+    """Radial clearance c, m (typically 1e-3 D)."""
+    viscosity: Positive
+    """Lubricant dynamic viscosity mu, Pa s (isoviscous film)."""
+    load: Positive | None = None
+    """Static load the bearing carries, N (default: the rotor's weight share on rigid supports at its bearings)."""
+    load_angle_deg: float = -90.0
+    """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z (-90: gravity along -z)."""
+    film: Literal["reynolds", "short"] = "reynolds"
+    """reynolds: finite-length film solved by finite elements; short: Ocvirk's short-bearing closed form (pi film)."""
+    cavitation: Literal["reynolds", "gumbel"] = "reynolds"
+    """Film rupture of the finite film: reynolds (Swift-Stieber: p >= 0 with zero gradient at rupture) or gumbel (half-Sommerfeld)."""
+    grooves_deg: Annotated[list[Pair], Field(max_length=8)] = []
+    """Axial supply grooves at ambient pressure, [[centre, width], ...] in degrees (centre from +y towards +z; finite film only)."""
+    mesh: Annotated[list[Annotated[int, Field(ge=2, le=2000)]], Field(min_length=2, max_length=2)] = [144, 16]
+    """Finite film mesh: [elements around (>= 12), elements along the half length]."""
+    speeds: Annotated[list[Positive], Field(min_length=2)] | None = None
+    """Speeds of the coefficient table, rad/s (> 0, increasing)."""
+    speeds_rpm: Annotated[list[Positive], Field(min_length=2)] | SpeedGrid | None = None
+    """Speeds of the coefficient table, rev/min (or give speeds): a list or a grid { start, stop, points }."""
+    interpolation: Literal["linear", "pchip"] = "pchip"
+    """Interpolation of the table between its speeds."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        if isinstance(self.speeds_rpm, SpeedGrid) and self.speeds_rpm.start <= 0:
+            rule("speeds_rpm", self.speeds_rpm.start, "a grid starting above 0 (the film carries no load at rest)")
+        return self
+
+
+class RotorRollingBearing(Table):
+    """``[[rotor.rolling_bearing]]``: a radial ball or roller bearing with radial clearance: Hertzian
+    elements (load-deflection exponent 3/2 balls, 10/9 rollers) on a cage turning at the epicyclic
+    speed; the linear analyses use the stiffness at the static load (averaged over the cage
+    positions), a run-up the nonlinear clearance law element by element."""
+
+    x: float
+    """Position along the shaft, m (a node)."""
+    element: Literal["ball", "roller"] = "ball"
+    """Rolling elements: ball (point contact) or roller (line contact)."""
+    elements: Annotated[int, Field(ge=3)]
+    """Number of rolling elements Z."""
+    element_diameter: Positive | None = None
+    """Ball or roller diameter D, m."""
+    pitch_diameter: Positive | None = None
+    """Pitch diameter d_m, m."""
+    contact_angle_deg: Annotated[float, Field(ge=0, lt=90)] = 0.0
+    """Contact angle alpha, degrees."""
+    clearance: float = 0.0
+    """Radial clearance (play per side: half the diametral clearance), m; negative: a preload."""
+    inner_conformity: Annotated[float, Field(gt=0.5, lt=1)] = 0.52
+    """Ball bearings: inner groove radius / ball diameter."""
+    outer_conformity: Annotated[float, Field(gt=0.5, lt=1)] = 0.52
+    """Ball bearings: outer groove radius / ball diameter."""
+    roller_length: Positive | None = None
+    """Roller bearings: effective roller length, m."""
+    modulus: Positive = 208e9
+    """Young's modulus of rings and elements, Pa."""
+    poisson: Annotated[float, Field(gt=-1, lt=0.5)] = 0.3
+    """Poisson's ratio of rings and elements."""
+    contact_stiffness: Positive | None = None
+    """Load-deflection constant K_n of one element between both races, N/m^n (instead of the geometry)."""
+    damping: NonNegative = 0.0
+    """Viscous damping of the bearing in y and z, N s/m."""
+    load: NonNegative | None = None
+    """Static load the bearing carries, N (default: the rotor's weight share)."""
+    load_angle_deg: float = -90.0
+    """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+
+class RotorSqueezeFilmDamper(Table):
+    """``[[rotor.squeeze_film_damper]]``: a squeeze-film damper (non-rotating journal in an oil film,
+    centred by a spring): short-bearing film in closed form, pi film (cavitated) or 2pi film; the
+    linear analyses use the centring stiffness and the film's damping at the static position, a
+    run-up the nonlinear film force."""
+
+    x: float
+    """Position along the shaft, m (a node)."""
+    diameter: Positive
+    """Damper journal diameter D, m."""
+    length: Positive
+    """Damper land length L, m."""
+    clearance: Positive
+    """Radial clearance c, m."""
+    viscosity: Positive
+    """Lubricant dynamic viscosity mu, Pa s."""
+    film: Literal["pi", "2pi"] = "pi"
+    """pi: cavitated film (half the circumference pressurised); 2pi: full film."""
+    centering_stiffness: NonNegative = 0.0
+    """Stiffness of the centring spring (squirrel cage) in y and z, N/m."""
+    load: NonNegative = 0.0
+    """Static load on the damper, N (carried by the centring spring)."""
+    load_angle_deg: float = -90.0
+    """Direction of the static load, degrees from +y towards +z."""
+    pedestal: str | None = None
+    """Name of the [[rotor.pedestal]] the damper sits on (default: ground)."""
+    name: str = ""
+    """Label in outputs."""
+
+
 class RotorPedestal(Table):
     """``[[rotor.pedestal]]``: a support with its own mass between bearings and ground."""
 
@@ -277,6 +399,12 @@ class RotorTable(Table):
     """[[rotor.disc]]: rigid discs."""
     bearing: Annotated[list[RotorBearing], Field(default_factory=list)]
     """[[rotor.bearing]]: linear bearings and seals (8 coefficients, constant or speed tables)."""
+    journal_bearing: Annotated[list[RotorJournalBearing], Field(default_factory=list)]
+    """[[rotor.journal_bearing]]: plain journal bearings computed from their geometry (Reynolds equation)."""
+    rolling_bearing: Annotated[list[RotorRollingBearing], Field(default_factory=list)]
+    """[[rotor.rolling_bearing]]: ball or roller bearings with radial clearance (Hertzian elements)."""
+    squeeze_film_damper: Annotated[list[RotorSqueezeFilmDamper], Field(default_factory=list)]
+    """[[rotor.squeeze_film_damper]]: squeeze-film dampers (short-bearing closed form)."""
     pedestal: Annotated[list[RotorPedestal], Field(default_factory=list)]
     """[[rotor.pedestal]]: bearing supports with their own mass."""
     coupling: Annotated[list[RotorCoupling], Field(default_factory=list)]
@@ -428,9 +556,11 @@ class RunUpTable(Table):
     rtol: Annotated[float, Field(ge=1e-13, le=1e-3)] = 1e-8
     """Relative tolerance of the event-located integrator."""
     start: Literal["steady", "rest"] = "steady"
-    """steady: the linear synchronous orbit at speed_start; rest: zero displacement and velocity."""
+    """steady: the linear synchronous orbit at speed_start (about the static state of bearings computed from their geometry); rest: zero displacement and velocity."""
     max_events: Count = 100_000
     """A chattering contact stops the run beyond this many contact events."""
+    integrator: Literal["auto", "DOP853", "LSODA"] = "auto"
+    """Integrator of method = "event": DOP853 (explicit), LSODA (BDF where stiff: fluid films on light journals), auto (LSODA with bearings computed from their geometry, else DOP853)."""
 
     @model_validator(mode="after")
     def _speeds(self):
