@@ -305,7 +305,7 @@ def ks_reference(osc):
     return f_down, f_up, osc.grazing_frequencies(0.5, 1.5), orbits
 
 
-@case("geared-backlash-kahraman-singh", group="geared")
+@case("geared-backlash-kahraman-singh", group="geared", slow=True)
 def backlash_kahraman_singh():
     """(d) Kahraman & Singh's piecewise-linear gear-pair oscillator (J. Sound Vib. 142 (1990) 49) as a train:
     examples/geared_rattle.toml (two gears on bodies, one mesh with backlash 2b, damping always acting,
@@ -650,7 +650,7 @@ def _reduction(study):
     return reduction(study.doc)
 
 
-@case("geared-compressor-campbell", group="geared")
+@case("geared-compressor-campbell", group="geared", slow=True)
 def compressor_campbell():
     """The critical speeds of examples/geared_compressor_train.toml (motor, bull gear and the high-speed pinion
     rotor with three impellers; helical mesh 150/25, the pinion at -6 x the motor speed), found on the Campbell
