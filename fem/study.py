@@ -14,6 +14,7 @@ exact backlash and slip events, nonlinear steady states, Floquet chart of the me
 """
 from __future__ import annotations
 
+import warnings
 from functools import cached_property
 from pathlib import Path
 
@@ -45,6 +46,7 @@ def steady_settings(table):
 
     return build(table)
 from .modelfile.load import kind_of
+from .modelfile.plausibility import Plausibility, PlausibilityWarning
 from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
 
 DEFAULT_MODES = 6
@@ -61,6 +63,15 @@ class Study:
         self.kind = kind_of(doc)
         self.path = path
         budget.check_document(doc, self.kind)
+        self.plausibility = getattr(doc, "__plausibility__", None) or Plausibility()
+        """Warnings on values likely in other units than SI or outside the model's theory (at load)."""
+        for w in self.plausibility.warnings:
+            warnings.warn(w, PlausibilityWarning, stacklevel=2)
+
+    @property
+    def model_warnings(self) -> list[str]:
+        """The plausibility warnings of the model file (listed first in every JSON ``warnings``)."""
+        return list(self.plausibility.warnings)
 
     @classmethod
     def load(cls, path) -> "Study":
@@ -238,7 +249,12 @@ class Study:
         tol = an.tolerance if isinstance(an, ModalAnalysis) else 1e-5
         if shift is None and isinstance(an, ModalAnalysis):
             shift = an.shift
-        result = modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+        extra = {}
+        if self.plausibility.units_suspect:       # not the mesh: the scales (a warning at load said which)
+            extra["precision_advice"] = ("likely cause: values in other units than SI (see the warnings on units "
+                                         "above), which put this model's scales far apart -- check them before "
+                                         "changing the mesh")
+        result = modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol, **extra)
         motors = [t.name or f"motor{i}" for i, t in enumerate(getattr(self.doc, "motor", None) or (), 1)]
         if motors:
             result.warnings.append(f"the motor(s) {', '.join(motors)} are not part of these undamped modes of the "

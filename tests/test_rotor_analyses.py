@@ -107,6 +107,20 @@ def test_critical_speeds_roots_equal_linear_eigenproblem():
         np.testing.assert_allclose(roots, lin, rtol=1e-8)
 
 
+def test_overdamped_modes_have_no_critical_speed_at_rest():
+    """Heavily damped bearings: four bearing modes are real (overdamped) at rest; their omega_d = 0
+    meets omega = Omega at the origin, which is no critical speed.  The crossings of the modes that
+    oscillate are unchanged (roots of omega_d(Omega) = Omega, checked against the diagram)."""
+    camp = campbell(friswell(6, cyy=2e5, czz=2e5), np.linspace(0.0, 600.0, 13), 8)
+    assert np.sum(camp.omega_damped_rad_s[0] == 0.0) == 4            # non-oscillating at rest
+    assert all(c.speed_rad_s > 0 and np.isfinite(c.log_decrement) for c in camp.critical_speeds)
+    assert len(camp.critical_speeds) == 4
+    for c in camp.critical_speeds:
+        assert c.frequency_rad_s == pytest.approx(c.speed_rad_s, rel=1e-9)
+        w = np.interp(c.speed_rad_s, camp.speeds_rad_s, camp.omega_damped_rad_s[:, c.mode])
+        assert w == pytest.approx(c.speed_rad_s, rel=0.02)                # the grid's linear interpolation
+
+
 def test_critical_speed_map_limits():
     """Soft bearings: the rotor moves rigidly, the first critical near sqrt(2 k / m_total) (the
     discs are not symmetric, so translation and tilt couple slightly: measured 0.3 % lower);

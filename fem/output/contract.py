@@ -45,7 +45,12 @@ SCHEMA_VERSION = 1
 
 
 def payload(command: str, study, data: dict) -> dict:
-    """The JSON document of ``command`` for ``study`` with the command's ``data``."""
+    """The JSON document of ``command`` for ``study`` with the command's ``data``; the model file's
+    plausibility warnings (values likely not in SI, a model outside its theory) come first in
+    ``warnings`` (the key is added for them where a command has none)."""
+    model_warnings = getattr(study, "model_warnings", None)
+    if model_warnings:
+        data = {**data, "warnings": model_warnings + list(data.get("warnings") or [])}
     return {"schema": f"drivefem.{command}", "version": SCHEMA_VERSION,
             "title": study.title if study is not None else "", "kind": study.kind if study is not None else None,
             **data}

@@ -11,7 +11,11 @@ Critical speeds of order k (k = 1: synchronous, 2: twice per revolution, 0.5 ...
 tracked mode the sign changes of g(Omega) = omega_j(Omega) - k Omega on the grid bracket the
 roots, which are then found by Brent's method, each evaluation a modal solve at that speed
 with the mode picked by MAC against the bracket's shape.  The grid only brackets; the root is
-converged to ``xtol`` (relative 1e-10 by default).
+converged to ``xtol`` (relative 1e-10 by default).  Modes that do not oscillate have no critical
+speed: rigid-body modes, and at rest the modes with a real eigenvalue (omega_d = 0: bearing modes
+that are overdamped at low speed), whose omega_d = 0 = k Omega there is the origin of the
+diagram, not a resonance (orders are > 0).  Once such a mode oscillates, its crossings are roots
+like any other (with their damping reported).
 """
 from __future__ import annotations
 
@@ -21,6 +25,7 @@ import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from discrete.errors import ModelError
+from discrete.linalg.blas import single_threaded_blas
 
 from .modal import RotorEigen, RotorModes, as_system, check_speed, eigen_workspace
 from .whirl import mac
@@ -155,7 +160,10 @@ def campbell(rotor, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool =
     n_cand = min(n_modes + _extra(n_modes), rs.n_dofs - rs.constrained.size)
     eig.solver.sweep(True)                  # warm starts from speed to speed (reproducible per diagram)
     try:
-        result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
+        # one BLAS thread: the tracking's products are tiny (n x 24); a second OpenBLAS thread only
+        # adds its wake-up, which on a loaded 2-core machine cost 70-100 ms per MAC matrix (measured)
+        with single_threaded_blas():
+            result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
     finally:
         eig.solver.sweep(False)
     return result
@@ -214,6 +222,11 @@ def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tole
             g = camp.omega_damped_rad_s[:, j] - k * s
             for i in range(s.size - 1):
                 if not (g[i] == 0 or g[i] * g[i + 1] < 0):
+                    continue
+                if g[i] == 0 and camp.omega_damped_rad_s[i, j] == 0.0:
+                    # omega = k Omega = 0 at rest: a mode that does not oscillate there (a real
+                    # eigenvalue: an overdamped bearing mode) meets the line at its origin, which is
+                    # no resonance; a crossing after it, once the mode oscillates, is bracketed next
                     continue
                 ref = shapes[i][:, j]
                 picked = {}

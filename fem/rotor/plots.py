@@ -31,22 +31,27 @@ def _dominant(labels) -> str:
     return max(set(vals), key=vals.count)
 
 
+#: the log-decrement panel of a Campbell diagram is cut here (heavily damped modes would flatten it)
+LOG_DEC_SHOWN = 4.0
+
+
 def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True) -> Path:
     """Damped natural frequencies (Hz) of the tracked modes against speed (rev/min), coloured by
     whirl (forward solid, backward dashed), the excitation lines k x speed, and the critical
-    speeds as circles; below, the log decrement of each mode."""
+    speeds as circles; below, the log decrement of each mode.  A mode is drawn where it
+    oscillates: not at speeds where its eigenvalue is real (omega_d = 0: overdamped, or rigid)."""
     s = camp.speeds_rad_s * RPM
     fig, axes = plt.subplots(2 if log_decrement else 1, 1, figsize=(7.5, 7 if log_decrement else 4.8), sharex=True,
                              gridspec_kw={"height_ratios": [3, 1.3]} if log_decrement else None)
     ax = axes[0] if log_decrement else axes
-    f = camp.omega_damped_rad_s / (2 * np.pi)
+    f = np.where(camp.omega_damped_rad_s > 0, camp.omega_damped_rad_s, np.nan) / (2 * np.pi)
     seen = set()
     for j in range(camp.n_modes):
         w = _dominant([row[j] for row in camp.whirl])
         colour, ls = WHIRL_STYLE.get(w, ("k", "-"))
         ax.plot(s, f[:, j], color=colour, ls=ls, lw=1.6, label=None if w in seen else f"{w} whirl")
         seen.add(w)
-    top = float(np.nanmax(f)) * 1.05 if f.size else 1.0
+    top = float(np.nanmax(f)) * 1.05 if np.any(np.isfinite(f)) else 1.0
     for k in camp.orders:
         ax.plot(s, k * camp.speeds_rad_s / (2 * np.pi), color="0.3", lw=1.0, ls="-")
         xe = min(s[-1], top * 2 * np.pi / k * RPM)
@@ -55,10 +60,12 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True) ->
     if crit:
         ax.plot([c.speed_rpm for c in crit], [c.frequency_rad_s / (2 * np.pi) for c in crit], "o", mfc="none",
                 mec="k", ms=8, label="critical speeds")
-        for c in crit:
-            if c.order == 1:
+        last = -np.inf
+        for c in sorted(crit, key=lambda c: c.speed_rpm):
+            if c.order == 1 and c.speed_rpm - last > 0.04 * (s[-1] - s[0]):     # labels that would overlap: the first
                 ax.annotate(f"{c.speed_rpm:.0f}", (c.speed_rpm, c.frequency_rad_s / (2 * np.pi)), fontsize=7,
                             xytext=(4, -10), textcoords="offset points")
+                last = c.speed_rpm
     ax.set_ylim(0, top)
     ax.set_ylabel("damped natural frequency [Hz]")
     ax.set_title(title or "Campbell diagram", fontsize=10)
@@ -72,7 +79,13 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True) ->
             colour, ls = WHIRL_STYLE.get(w, ("k", "-"))
             a2.plot(s, ld[:, j], color=colour, ls=ls, lw=1.2)
         a2.axhline(0.0, color="k", lw=0.8)
-        a2.set_ylabel("log decrement")
+        hi = float(np.nanmax(ld)) if np.any(np.isfinite(ld)) else 1.0
+        if hi > LOG_DEC_SHOWN:           # modes just past overdamped: log dec -> inf; the stability margin is near 0
+            lo = float(np.nanmin(ld))
+            a2.set_ylim(min(lo, 0.0) - 0.05 * LOG_DEC_SHOWN, LOG_DEC_SHOWN)
+            a2.set_ylabel(f"log decrement\n(shown up to {LOG_DEC_SHOWN:g})")
+        else:
+            a2.set_ylabel("log decrement")
         a2.grid(alpha=0.3)
         a2.set_xlabel("speed [rev/min]")
     else:

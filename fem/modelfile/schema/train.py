@@ -14,9 +14,9 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import Count, Fraction, Name, NonNegative, Pair, Positive, Table, rule
+from .base import Count, Fraction, Integer, Name, NonNegative, Number, Positive, Real, Table, pair, rule
 from .fe import Material, ModelSettings, Point, Segment, Support
-from .rotor import CampbellTable, RotorTable, SpeedGrid, SpeedList, _one_of
+from .rotor import CampbellTable, RotorTable, SpeedGrid, SpeedGridRpm, SpeedList, SpeedListRpm, _one_of
 
 
 class ShaftNode(Table):
@@ -24,7 +24,7 @@ class ShaftNode(Table):
 
     shaft: Name
     """The shaft's name."""
-    x: float
+    x: Real["m"]
     """Position along that shaft, m (a node)."""
     dof: str | None = None
     """A DOF name at the node (drivers and forces: default the torsion DOF, theta or theta_x)."""
@@ -39,10 +39,10 @@ class TrainTable(Table):
 
     reference: Name | None = None
     """The shaft or body whose speed is the train's speed Omega (default: the first shaft, else the first body)."""
-    speed: NonNegative | None = None
+    speed: NonNegative["rad/s"] | None = None
     """Operating speed of the reference, rad/s (tooth-pass frequencies of the time simulation, steady states
     and the Floquet analysis at fixed speed)."""
-    speed_rpm: NonNegative | None = None
+    speed_rpm: NonNegative["rpm"] | None = None
     """Operating speed of the reference, rev/min (or give speed)."""
     start: Literal["rest", "static"] = "rest"
     """Time simulation: start at rest (the bodies' x0, v0) or in the static state under the constant loads (every
@@ -60,13 +60,13 @@ class TrainShaftTable(Table):
 
     name: Name
     """Name of the shaft (ends of connections, outputs)."""
-    position: Pair = [0.0, 0.0]
+    position: pair("m") = [0.0, 0.0]
     """[y, z] of the shaft axis in the train frame, m (the gears' line of centres follows from it)."""
-    x0: float = 0.0
+    x0: Real["m"] = 0.0
     """Axial position of the shaft's x = 0 in the train frame, m (figures)."""
     plane: Literal["y", "z"] = "y"
     """FE bending shafts: the direction of the deflection w."""
-    speed_ratio: float | None = None
+    speed_ratio: Real["1"] | None = None
     """Its speed / the reference speed, signed (default: from the meshes and couplings)."""
     model: ModelSettings | None = None
     """[shaft.model]: physics, theory, mass, order (an FE shaft)."""
@@ -107,13 +107,13 @@ class TrainBodyTable(Table):
 
     name: Name
     """Name (ends of connections, outputs)."""
-    inertia: Positive
+    inertia: Positive["kg*m^2"]
     """Moment of inertia about x, kg m^2."""
-    x0: float = 0.0
+    x0: Real["rad"] = 0.0
     """Initial angle of its vibration, rad."""
-    v0: float = 0.0
+    v0: Real["rad/s"] = 0.0
     """Initial angular velocity of its vibration, rad/s."""
-    speed_ratio: float | None = None
+    speed_ratio: Real["1"] | None = None
     """Its speed / the reference speed, signed (default: from the connections)."""
 
 
@@ -121,14 +121,14 @@ class VariationTable(Table):
     """The periodic part of the mesh stiffness, k(t) = stiffness (1 + sum a_h cos(h w_m t) + b_h sin(h w_m t))
     at the tooth-pass frequency w_m: Fourier coefficients, or a rectangular wave from the contact ratio."""
 
-    fourier: Annotated[list[Annotated[list[float], Field(min_length=3, max_length=3)]], Field(min_length=1)] | None \
-        = None
+    fourier: Annotated[list[Annotated[list[Real["1"]], Field(min_length=3, max_length=3)]], Field(min_length=1)] \
+        | None = None
     """Rows [h, a_h, b_h] (h: harmonic of the tooth-pass frequency)."""
-    contact_ratio: Annotated[float, Field(gt=1, lt=2)] | None = None
+    contact_ratio: Number(gt=1, lt=2)["1"] | None = None
     """Rectangular wave: contact ratio in (1, 2) (double contact over contact_ratio - 1 of the mesh period)."""
-    depth: Annotated[float, Field(gt=0, lt=1)] | None = None
+    depth: Number(gt=0, lt=1)["1"] | None = None
     """Rectangular wave: (k_double - k_single) / stiffness."""
-    harmonics: Annotated[int, Field(ge=1, le=200)] = 25
+    harmonics: Integer(ge=1, le=200) = 25
     """Rectangular wave: Fourier terms kept."""
 
     @model_validator(mode="after")
@@ -152,9 +152,9 @@ class TransmissionErrorTable(Table):
 
     harmonic: Count = 1
     """Harmonic of the tooth-pass frequency."""
-    amplitude: float
+    amplitude: Real["m"]
     """Amplitude along the line of action, m."""
-    phase_deg: float = 0.0
+    phase_deg: Real["deg"] = 0.0
     """Phase, degrees."""
 
 
@@ -167,19 +167,19 @@ class MeshTable(Table):
     """Name (outputs; default mesh<index>)."""
     between: Ends
     """[gear a, gear b]: body names or { shaft = .., x = .. }."""
-    stiffness: Positive
+    stiffness: Positive["N/m"]
     """Mean mesh stiffness along the line of action, N/m."""
-    damping: NonNegative = 0.0
+    damping: NonNegative["N*s/m"] = 0.0
     """Mesh damping along the line of action, N s/m."""
-    base_radius: Pair | None = None
+    base_radius: pair("m") | None = None
     """[r_a, r_b]: base radii (transverse), m."""
-    teeth: Annotated[list[Annotated[int, Field(ge=1)]], Field(min_length=2, max_length=2)] | None = None
+    teeth: Annotated[list[Integer(ge=1)], Field(min_length=2, max_length=2)] | None = None
     """[z_a, z_b]: tooth numbers (tooth-pass frequency z_a |Omega_a|; with module: the radii)."""
-    module: Positive | None = None
+    module: Positive["m"] | None = None
     """Normal module, m (with teeth, instead of base_radius)."""
-    pressure_angle_deg: Annotated[float, Field(gt=0, lt=90)] = 20.0
+    pressure_angle_deg: Number(gt=0, lt=90)["deg"] = 20.0
     """Normal pressure angle, degrees."""
-    helix_angle_deg: Annotated[float, Field(ge=0, lt=90)] = 0.0
+    helix_angle_deg: Number(ge=0, lt=90)["deg"] = 0.0
     """Helix angle, degrees (0: spur)."""
     hand: Literal["right", "left"] = "right"
     """Helix hand of gear a (the sign of the axial component of the line of action)."""
@@ -187,9 +187,9 @@ class MeshTable(Table):
     """An internal pair: gear b is the ring (same sense of rotation)."""
     flank: Literal["positive", "negative"] = "positive"
     """Which of the two lines of action through the pitch point is the drive flank's."""
-    line_of_centres_deg: float | None = None
+    line_of_centres_deg: Real["deg"] | None = None
     """Direction of the line of centres from +y towards +z, degrees (default: from the shafts' positions, else 0)."""
-    backlash: NonNegative = 0.0
+    backlash: NonNegative["m"] = 0.0
     """Total backlash along the line of action, m (half on each flank; 0: always in mesh)."""
     damping_in_contact: bool = False
     """The damping acts only while a flank is in contact (default: always, Kahraman & Singh)."""
@@ -223,27 +223,27 @@ class CouplingTable(Table):
     """Name (outputs; default coupling<index>)."""
     between: Ends
     """[a, b]: body names, "ground" or { shaft = .., x = .. }."""
-    k_torsion: NonNegative = 0.0
+    k_torsion: NonNegative["N*m/rad"] = 0.0
     """Torsional stiffness, N m/rad."""
-    c_torsion: NonNegative = 0.0
+    c_torsion: NonNegative["N*m*s/rad"] = 0.0
     """Torsional damping, N m s/rad."""
-    k_lateral: NonNegative = 0.0
+    k_lateral: NonNegative["N/m"] = 0.0
     """Lateral stiffness (y and z), N/m."""
-    c_lateral: NonNegative = 0.0
+    c_lateral: NonNegative["N*s/m"] = 0.0
     """Lateral damping, N s/m."""
-    k_angular: NonNegative = 0.0
+    k_angular: NonNegative["N*m/rad"] = 0.0
     """Angular (tilt) stiffness, N m/rad."""
-    c_angular: NonNegative = 0.0
+    c_angular: NonNegative["N*m*s/rad"] = 0.0
     """Angular damping, N m s/rad."""
-    k_axial: NonNegative = 0.0
+    k_axial: NonNegative["N/m"] = 0.0
     """Axial stiffness, N/m."""
-    c_axial: NonNegative = 0.0
+    c_axial: NonNegative["N*s/m"] = 0.0
     """Axial damping, N s/m."""
-    backlash: NonNegative = 0.0
+    backlash: NonNegative["rad"] = 0.0
     """Total torsional backlash, rad (with k_torsion)."""
-    slip_torque: Positive | None = None
+    slip_torque: Positive["N*m"] | None = None
     """Kinetic slip torque, N m (a slipping coupling, rigid until it slips; no k_torsion)."""
-    slip_torque_static: Positive | None = None
+    slip_torque_static: Positive["N*m"] | None = None
     """Breakaway torque, N m (>= slip_torque; default slip_torque)."""
     linear_state: Literal["closed", "open"] | None = None
     """The torsion in linear analyses: closed (the spring) or open (default for a slip coupling)."""
@@ -255,15 +255,15 @@ class TrainDriverTable(Table):
 
     at: End
     """A body name or { shaft = .., x = .., dof = .. } (default DOF: the torsion)."""
-    offset: float = 0.0
+    offset: Real["m", "rad"] = 0.0
     """Constant part, rad or m."""
-    velocity: float = 0.0
+    velocity: Real["m/s", "rad/s"] = 0.0
     """Constant velocity (a drifting rotation), rad/s or m/s."""
-    amplitude: float = 0.0
+    amplitude: Real["m", "rad"] = 0.0
     """Harmonic amplitude."""
-    omega: NonNegative = 0.0
+    omega: NonNegative["rad/s"] = 0.0
     """Angular frequency, rad/s."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase, rad."""
 
 
@@ -273,15 +273,15 @@ class TrainForceTable(Table):
 
     at: End
     """A body name or { shaft = .., x = .., dof = .. } (default DOF: the torsion)."""
-    value: float = 0.0
+    value: Real["N", "N*m"] = 0.0
     """Constant part (N or N m)."""
-    amplitude: float = 0.0
+    amplitude: Real["N", "N*m"] = 0.0
     """Harmonic amplitude."""
-    omega: NonNegative | None = None
+    omega: NonNegative["rad/s"] | None = None
     """Angular frequency, rad/s."""
-    order: Positive | None = None
+    order: Positive["1"] | None = None
     """Instead of omega: harmonic order of the member's speed (omega = order |Omega_i|)."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase, rad."""
 
     @model_validator(mode="after")
@@ -298,13 +298,13 @@ class TrainAnalysis(Table):
 
     type: Literal["modal", "campbell", "forced", "simulate", "parametric"] = "modal"
     """The command run by default (drivefem demo, the examples' tests)."""
-    speed: NonNegative | None = None
+    speed: NonNegative["rad/s"] | None = None
     """Reference speed of drivefem modal, rad/s (default 0)."""
-    speed_rpm: NonNegative | None = None
+    speed_rpm: NonNegative["rpm"] | None = None
     """Reference speed of drivefem modal, rev/min."""
     modes: Count | None = None
     """Number of modes (default 6)."""
-    tolerance: Annotated[float, Field(gt=0, lt=1)] = 1e-6
+    tolerance: Number(gt=0, lt=1)["1"] = 1e-6
     """Modes with a larger backward error are flagged unreliable."""
 
     @model_validator(mode="after")
@@ -320,9 +320,9 @@ class TrainForced(Table):
 
     speeds: SpeedList | None = None
     """Reference speeds, rad/s: a list or { start, stop, points }."""
-    speeds_rpm: SpeedList | None = None
+    speeds_rpm: SpeedListRpm | None = None
     """Reference speeds, rev/min."""
-    samples: Annotated[int, Field(ge=8, le=4096)] = 64
+    samples: Integer(ge=8, le=4096) = 64
     """Time samples per mesh period of the dynamic load factor."""
 
     @model_validator(mode="after")
@@ -334,9 +334,9 @@ class TrainForced(Table):
 class TrainReduction(Table):
     """``[reduction]``: Craig-Bampton reduction of every shaft at its connection, driver and force DOFs."""
 
-    modes: Annotated[int, Field(ge=0)] = 6
+    modes: Integer(ge=0) = 6
     """Fixed-interface modes kept per shaft."""
-    shaft_modes: dict[str, Annotated[int, Field(ge=0)]] = {}
+    shaft_modes: dict[str, Integer(ge=0)] = {}
     """Per shaft: { name = modes } overriding modes."""
     static_correction: bool = True
     """Craig-Bampton (constraint modes at the interface DOFs); false: free-interface modes only."""
@@ -347,11 +347,11 @@ class TrainReduction(Table):
 class DepthAxis(Table):
     """Depths of the mesh-stiffness variation (its size relative to the declared variation)."""
 
-    start: NonNegative = 0.0
+    start: NonNegative["1"] = 0.0
     """Smallest depth."""
-    stop: Positive
+    stop: Positive["1"]
     """Largest depth."""
-    points: Annotated[int, Field(ge=1)] = 21
+    points: Integer(ge=1) = 21
     """Number of depths."""
 
 
@@ -361,17 +361,17 @@ class TrainParametric(Table):
 
     speeds: SpeedGrid | None = None
     """Reference speeds, rad/s: { start, stop, points }."""
-    speeds_rpm: SpeedGrid | None = None
+    speeds_rpm: SpeedGridRpm | None = None
     """Reference speeds, rev/min."""
     depth: DepthAxis
     """Depth of the variation: { start, stop, points }."""
     mesh: Name | None = None
     """The [[mesh]] whose variation pulsates (default: the one mesh with a [mesh.variation])."""
-    boundaries_at: list[NonNegative] = []
+    boundaries_at: list[NonNegative["1"]] = []
     """Depths at which the instability intervals are located by root finding."""
     modes: Count | None = None
     """Project on the lowest modes of the mean train (required above 60 free DOFs)."""
-    tolerance: Annotated[float, Field(gt=0, le=1e-4)] = 1e-10
+    tolerance: Number(gt=0, le=1e-4)["1"] = 1e-10
     """Relative error target of each monodromy matrix."""
 
     @model_validator(mode="after")
