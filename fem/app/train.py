@@ -195,7 +195,7 @@ def forced(args) -> int:
         with progress_bar(w0, w1, "continuation", "rad/s") as update:
             res = study.forced(progress=update)
         _emit(args, "forced", study, contract.forced_data(study, res))
-        tables.forced_table(study, res, all_rows=args.all)
+        tables.forced_table(study, res, all_rows=args.all, out=sys.stdout)
         if args.csv:
             columns.write(args.csv, columns.afc(res))
             print(f"wrote {args.csv}")
@@ -264,7 +264,7 @@ def simulate(args) -> int:
     with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
         res = study.simulate(progress=update)
     d = _emit(args, "simulate", study, res.to_dict())
-    tables.simulation_summary(study.title, d)
+    tables.simulation_summary(study.title, d, out=sys.stdout)
     print(f"force balance of every shaft and body at every sample: max residual {d['force_balance']['max_residual']:.1e}")
     for k, v in d["connection_forces"].items():
         print(f"  {k}: force min {v['min']:.6g}, max {v['max']:.6g}, mean {v['mean']:.6g}")
