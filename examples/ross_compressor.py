@@ -40,7 +40,7 @@ def run(out_dir: Path | None = None):
                     natural_frequency_rad_s=camp.natural_frequency_rad_s[:, keep],
                     log_decrement=camp.log_decrement[:, keep], damping_ratio=camp.damping_ratio[:, keep],
                     whirl=[[row[j] for j in keep] for row in camp.whirl], kind=[camp.kind[j] for j in keep],
-                    critical_speeds=[replace(c, mode=keep.index(c.mode)) for c in camp.critical_speeds
+                    crossings=[replace(c, mode=keep.index(c.mode)) for c in camp.crossings
                                      if c.mode in keep])
     path = None
     if out_dir is not None:

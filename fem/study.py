@@ -148,8 +148,9 @@ class Study:
         self._need("train", what="a geared train")
         return assemble_train(build_train.train_model(self.doc))
 
-    def campbell(self, n_modes: int | None = None):
-        """Rotor and train files: the Campbell diagram of [campbell] with its critical speeds."""
+    def campbell(self, n_modes: int | None = None, progress=None):
+        """Rotor and train files: the Campbell diagram of [campbell] with its critical speeds
+        (``progress(done, total)`` after each solve: :func:`fem.rotor.campbell`)."""
         from .rotor import campbell
 
         self._need("rotor", "train", what="drivefem campbell")
@@ -163,11 +164,11 @@ class Study:
             tol = self.analysis.tolerance if self.analysis is not None else 1e-6
             return train_campbell(self.train, build_train.speeds(t, "[campbell]"),
                                   build_train.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
-                                  critical=t.critical, tolerance=tol)
+                                  critical=t.critical, tolerance=tol, progress=progress)
         speeds = build_rotor.speed_grid(t, "[campbell]")
         tol = self.analysis.tolerance if self.analysis is not None else 1e-6
         return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
-                        critical=t.critical, tolerance=tol)
+                        critical=t.critical, tolerance=tol, progress=progress)
 
     def linear_system(self):
         """The linear part: FE assembled, lumped with gears eliminated, hybrid compiled."""

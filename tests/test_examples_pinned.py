@@ -65,6 +65,7 @@ PINNED = {
     "geared_mesh_parametric.toml": ["geared-mesh-parametric-hill"],
     "geared_two_stage.toml": ["geared-two-stage-loads"],
     "geared_compressor_train.toml": ["geared-compressor-campbell"],
+    "rotor_jeffcott_seal.toml": ["rotor-jeffcott-seal-cli"],
 }
 """Example file -> the validation cases that load it as their model."""
 

@@ -241,7 +241,9 @@ def test_compressor_example_script(tmp_path):
     modes, camp, shown, path = mod.run(tmp_path)
     assert path.exists() and path.stat().st_size > 10_000
     assert np.sum(camp.omega_damped_rad_s[0] == 0) == 6                 # 2 rigid + 4 overdamped bearing modes
-    crit = [c for c in camp.critical_speeds if c.log_decrement < 5]
-    assert all(c.speed_rpm > 1000 for c in camp.critical_speeds)
+    crit = [c for c in camp.crossings if c.log_decrement < 5]
+    assert all(c.speed_rpm > 1000 for c in camp.crossings)
     assert [round(c.speed_rpm) for c in crit] == [9648, 9962]
     assert [c.whirl for c in crit] == ["backward", "forward"]
+    assert 9962 in [round(c.speed_rpm) for c in camp.critical_speeds]          # the forward one is a critical speed
+    assert 9648 in [round(c.speed_rpm) for c in camp.backward_crossings]

@@ -26,7 +26,7 @@ NON_SI = {
     "1/rad": "1/deg", "s": "ms", "1/s": "1/min", "1/s^2": "1/min^2", "rad^2/s^2": "deg^2/s^2",
     "rad/s": "rpm", "Hz": "rpm", "rpm": "rad/s", "m/s": "mm/s", "m/s^2": "mm/s^2", "kg": "g",
     "kg*m^2": "g*cm^2", "kg/s": "g/s", "kg*m^2/s": "g*cm^2/s", "kg/m": "g/mm", "kg*m^2/m": "g*cm^2/mm",
-    "kg/m^3": "g/cm^3", "kg*m": "g*mm", "kg*m^2*rad": "g*cm^2*deg", "Pa": "MPa", "N": "kN", "N*m": "kN*m",
+    "kg/m^3": "g/cm^3", "kg*m": "g*mm", "kg*m^2*rad": "g*cm^2*deg", "Pa": "MPa", "N": "kN", "N*m": "kN*m", "W": "kW",
     "N/m": "N/mm", "N*m/rad": "N*m/deg", "N*m/m": "N*m/mm", "N/m^3": "N/mm^3", "N*m/rad^3": "N*m/deg^3",
     "N*m^2": "kN*mm^2", "N*s/m": "N*s/mm", "N*m*s/rad": "N*m*s/deg", "N*s^2/m^2": "N*s^2/mm^2",
     "N*m*s^2/rad^2": "N*m*s^2/deg^2", "N*s^3/m^3": "N*s^3/mm^3", "N*m*s^3/rad^3": "N*m*s^3/deg^3",

@@ -88,6 +88,9 @@ def _dunkerley(study) -> float | None:
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
     _outputs(args, json=False, csv=False, plot=False)
+    if getattr(args, "html", None):
+        raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
+                         "unbalance response); for this model use --plot")
     study = Study.load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range
@@ -192,10 +195,13 @@ def validate(args) -> int:
 def render(args) -> int:
     from ..render import render_study
 
+    from .progress import count_bar
+
     _outputs(args, out=True)
     study = Study.load(args.model)
     modes = [int(m) for m in args.mode] if args.mode else None
-    rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes)
+    with count_bar("render", "images", quiet=getattr(args, "quiet", False)) as update:
+        rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes, progress=update)
     for p in rep.data_files + rep.images:
         print(f"wrote {p}")
     print(rep.message)

@@ -3,10 +3,11 @@
 * ``drivefem modal ROTOR [--modes N] [--json F] [--plot F] [--png DIR]``: complex modes at the speed of
   ``[analysis]`` (damped frequencies, log decrement, whirl); ``--plot`` the orbits of the first
   flexible mode, ``--png`` an off-screen 3D whirl picture per lateral mode;
-* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F] [--all]``: unbalance response of
-  ``[unbalance_response]`` and ``[[unbalance]]`` (Bode plot, peaks with AF and separation margins);
-* ``drivefem campbell ROTOR [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
-  ``[campbell]`` with the critical speeds;
+* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F|DIR] [--html F] [--all]``: unbalance response of
+  ``[unbalance_response]`` and ``[[unbalance]]`` (peaks with AF and separation margins); ``--plot
+  bode.png`` the Bode plot, ``--plot DIR`` the Bode plot and a polar plot per probe;
+* ``drivefem campbell ROTOR [--modes N] [--json F] [--plot F] [--csv F] [--html F]``: Campbell diagram
+  of ``[campbell]``: critical speeds (forward crossings) and backward crossings apart;
 * ``drivefem simulate ROTOR [--json F] [--csv F] [--png DIR]``: the run-up of ``[run_up]`` with the
   ``[[rub]]`` clearances and ``[[unbalance]]`` (orbits, rub forces and regimes, events, energy
   balance); exit 1 when the run stopped early (the reason is printed).
@@ -36,12 +37,20 @@ def add_parser(subparsers) -> None:
     p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
                    "[analysis] modes or 6)")
     p.add_argument("--json", help="write the JSON diagram here (schema drivefem.campbell)")
-    p.add_argument("--png", help="write the PNG diagram here (excitation lines, critical speeds, log decrement)")
+    p.add_argument("--plot", help="write the PNG diagram here (excitation lines, critical speeds and backward "
+                   "crossings apart, operating range, log decrement)")
+    p.add_argument("--png", help="the same as --plot (older spelling)")
     p.add_argument("--csv", help="write the diagram here, one row per speed")
+    p.add_argument("--html", help="write the diagram as a self-contained interactive HTML file (needs plotly: "
+                   "pip install 'drivefem[html]')")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=campbell)
     for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), rotor_command))
+    from . import rotor_analyses
+
+    rotor_analyses.add_parser(subparsers)           # drivefem static | critical-map | stability
 
 
 def _routed(other, rotor_command):
@@ -152,8 +161,35 @@ def modal_table(study, res, out=None) -> None:
 
 
 # --------------------------------------------------------------- forced
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+
+
+def figure_target(path, option: str = "--plot"):
+    """(file, None) for a path with an image suffix (one figure), else (None, directory) for several."""
+    from pathlib import Path
+
+    p = Path(path)
+    if p.suffix.lower() in IMAGE_SUFFIXES:
+        return p, None
+    if p.suffix:
+        raise ModelError("command line", option, str(path), "a .png file (one figure) or a directory without a suffix "
+                         "(every figure of the command)")
+    p.mkdir(parents=True, exist_ok=True)
+    return None, p
+
+
+def _file_name(text: str) -> str:
+    import re
+
+    return re.sub(r"[^A-Za-z0-9.-]+", "_", text).strip("_") or "probe"
+
+
 def forced(args) -> int:
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, json=False, csv=False, plot=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
@@ -163,9 +199,20 @@ def forced(args) -> int:
         write_csv(args.csv, *response_columns(res))
         print(f"wrote {args.csv}")
     if args.plot:
-        from ..rotor.plots import plot_bode
+        from ..rotor.plots import plot_bode, plot_polar, probe_label
 
-        print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
+        one, folder = figure_target(args.plot)
+        if one is not None:
+            print(f"wrote {plot_bode(res, one, title=study.title)}")
+        else:
+            print(f"wrote {plot_bode(res, folder / 'bode.png', title=study.title)}")
+            for j, p in enumerate(res.probes):
+                name = _file_name(probe_label(p))
+                print(f"wrote {plot_polar(res, folder / f'polar_{j + 1}_{name}.png', j, title=study.title)}")
+    if getattr(args, "html", None):
+        from ..output.html import bode_html
+
+        print(f"wrote {bode_html(res, args.html, title=study.title)}")
     return 0
 
 
@@ -211,25 +258,47 @@ def response_columns(res) -> tuple[list[str], list]:
 
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
                          "model)")
     _linear_note(study)
-    camp = study.campbell(args.modes)
-    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    from ..modelfile.build.rotor import operating_range
+    from .progress import count_bar
+
+    op = operating_range(study.doc)
+    with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
+        camp = study.campbell(args.modes, progress=update)
+    data = contract.campbell_data(study, camp)
+    data["operating_range_rad_s"] = None if op is None else list(op)
+    _emit(args, "campbell", study, data)
     campbell_table(study, camp)
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp))
         print(f"wrote {args.csv}")
-    if args.png:
+    figure = getattr(args, "plot", None) or args.png
+    if figure:
         from ..rotor.plots import plot_campbell
 
-        print(f"wrote {plot_campbell(camp, args.png, title=study.title)}")
+        print(f"wrote {plot_campbell(camp, figure, title=study.title, operating_range=op)}")
+    if getattr(args, "html", None):
+        from ..output.html import campbell_html
+
+        print(f"wrote {campbell_html(camp, args.html, title=study.title, operating_range=op)}")
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
+
+
+def _crossing_line(c, label: str) -> str:
+    ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
+    return (f"{label} (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
+            f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}")
 
 
 def campbell_table(study, camp, out=None) -> None:
@@ -243,12 +312,18 @@ def campbell_table(study, camp, out=None) -> None:
         w = max(set(row[j] for row in camp.whirl), key=[row[j] for row in camp.whirl].count)
         print(f"{j + 1:4d} {camp.kind[j]:>8} {w:>9} {camp.omega_damped_rad_s[0, j] / (2 * np.pi):18.5f} "
               f"{camp.omega_damped_rad_s[-1, j] / (2 * np.pi):16.5f}", file=out)
-    if not camp.critical_speeds:
+    if not camp.crossings:
         print("no critical speed of orders " + ", ".join(f"{k:g}" for k in camp.orders) + " in the range", file=out)
     for c in camp.critical_speeds:
-        ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
-        print(f"critical speed (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
-              f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}", file=out)
+        print(_crossing_line(c, "critical speed"), file=out)
+    back = camp.backward_crossings
+    if back:
+        iso = camp.isotropic_supports
+        print("backward-whirl crossings, not critical speeds: " + (
+            "the supports are isotropic, so unbalance (a forward force) does not excite them" if iso else
+            "the supports are anisotropic: unbalance can excite them weakly (see drivefem forced)"), file=out)
+        for c in back:
+            print("  " + _crossing_line(c, "backward crossing"), file=out)
 
 
 def campbell_columns(camp) -> tuple[list[str], list]:
@@ -304,7 +379,36 @@ def simulate(args) -> int:
             cas, onset = whirl
             print(f"wrote {plot_cascade(cas, out / 'cascade.png', onset=onset, title=study.title)}")
             print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png')}")
+        for p in _run_up_spectra(study, res, out, cascade_done=whirl is not None):
+            print(f"wrote {p}")
     return 1 if doc.get("stopped") else 0
+
+
+def _run_up_spectra(study, res, out, cascade_done: bool) -> list:
+    """The run-up Bode plot (1x tracking filter, the steady unbalance response of the linear rotor
+    dashed) and, unless the whirl analysis drew it, the cascade of the probe that moves most."""
+    from ..rotor.plots import plot_cascade, plot_run_up_bode
+    from ..rotor.runup_tracking import synchronous_response
+    from ..rotor.whirl_spectrum import cascade
+
+    written = []
+    if res.t.size < 64 or np.ptp(res.speed) <= 0:
+        print("note: no run-up Bode plot or cascade: the speed does not change (or the run is too short)",
+              file=sys.stderr)
+        return written
+    sync = synchronous_response(res)
+    steady = None
+    lo, hi = max(float(sync.speed_rad_s.min()), 1e-3 * float(sync.speed_rad_s.max())), float(sync.speed_rad_s.max())
+    if study.doc.unbalance and hi > lo:
+        from ..modelfile.build.rotor import _unbalances
+        from ..rotor import Probe, unbalance_response
+
+        steady = unbalance_response(study.rotor, _unbalances(study.doc), np.linspace(lo, hi, 300),
+                                    probes=[Probe(float(x), "major") for x in res.probe_x], find_peaks=False)
+    written.append(plot_run_up_bode(sync, out / "run_up_bode.png", title=study.title, steady=steady))
+    if not cascade_done:
+        written.append(plot_cascade(cascade(res), out / "cascade.png", title=study.title))
+    return written
 
 
 def _whirl(res):

@@ -114,22 +114,30 @@ def modal_table(study, res, out=None) -> None:
 def campbell(args) -> int:
     from .rotor import campbell_columns, campbell_table
 
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
+    from .progress import count_bar
+
     study = _load(args.model)
-    camp = study.campbell(args.modes)
+    with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
+        camp = study.campbell(args.modes, progress=update)
     _emit(args, "campbell", study, contract.campbell_data(study, camp))
     campbell_table(study, camp)
     print("speed ratios: " + ", ".join(f"{m} {r:.6g}" for m, r in study.train.ratios.items()))
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp))
         print(f"wrote {args.csv}")
-    if args.png:
+    figure = getattr(args, "plot", None) or args.png
+    if figure:
         from ..train.plots import plot_train_campbell
 
         ts = study.train
         lines = {f"tooth pass {m.name}": m.teeth[0] * abs(ts.ratio_of(m.ports[0])) / (2 * np.pi)
                  for m in ts.train.connections if getattr(m, "teeth", None)}
-        print(f"wrote {plot_train_campbell(camp, args.png, title=study.title, ratios=ts.ratios, lines=lines, reference=ts.train.reference)}")
+        print(f"wrote {plot_train_campbell(camp, figure, title=study.title, ratios=ts.ratios, lines=lines, reference=ts.train.reference)}")
+    if getattr(args, "html", None):
+        from ..output.html import campbell_html
+
+        print(f"wrote {campbell_html(camp, args.html, title=study.title)}")
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
@@ -189,6 +197,9 @@ def forced(args) -> int:
     from .progress import progress_bar
 
     _check_outputs(args, json=False, csv=False, plot=False)
+    if getattr(args, "html", None):
+        raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
+                         "unbalance response); for a train file use --plot")
     study = _load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range

@@ -88,6 +88,7 @@ _CATALOGUE = (
     Dimension("N/m^(10/9)", "a line-contact constant", "1e8 N/mm^(10/9)"),
     Dimension("N", "a force", "2 kN", T),
     Dimension("N*m", "a torque", "1.5 kN*m", R),
+    Dimension("W", "a power", "1.5 MW"),
     Dimension("N/m", "a stiffness", "20 kN/mm", T),
     Dimension("N*m/rad", "a torsional stiffness", "5 kN*m/rad", R),
     Dimension("N*m/m", "a torque per length", "5 N*m/mm", R),

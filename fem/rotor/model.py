@@ -268,7 +268,7 @@ class Bearing:
     cyy czz >= ((cyz + czy)/2)^2): the power the bearing's damping force takes from the shaft,
     d'^T C d', is then >= 0, which the energy balances of run-ups count on; the skew part
     (cross-coupled damping of seals) does no work and is free.  A bearing needs some nonzero
-    direct coefficient.  ``k_axial``, ``c_axial`` (N/m, N s/m, >= 0): a thrust bearing on u
+    coefficient (cross-coupled stiffness alone: an aerodynamic cross-coupling).  ``k_axial``, ``c_axial`` (N/m, N s/m, >= 0): a thrust bearing on u
     (``dofs = "full"`` only)."""
 
     x: float
@@ -308,9 +308,9 @@ class Bearing:
             j, key = bad
             at = f" at {self.speed_grid[j]:g} rad/s" if self.speeds is not None else ""
             raise ModelError(where, key, float(table[key][j]), DAMPING_RULE + at)
-        if not any(np.any(table[k] != 0) for k in ("kyy", "kzz", "cyy", "czz")):
-            raise ModelError(where, "kyy", 0.0, "a bearing with some direct stiffness or damping "
-                             "(kyy, kzz, cyy or czz > 0): all direct coefficients are zero")
+        if not any(np.any(table[k] != 0) for k in BEARING_COEFFICIENTS):
+            raise ModelError(where, "kyy", 0.0, "a bearing with some nonzero coefficient (direct, or cross-coupled "
+                             "only: an aerodynamic cross-coupling): all coefficients are zero")
         _finite(self.k_axial, "k_axial", where, minimum=0.0)
         _finite(self.c_axial, "c_axial", where, minimum=0.0)
 

@@ -21,7 +21,7 @@ import scipy.sparse as sp
 from discrete.errors import ModelError
 from discrete.linear.complex_modal import ComplexModeFigures, QuadraticEigensolver
 
-from ..rotor.campbell import CampbellResult, _extra, _orders, _speeds, _track
+from ..rotor.campbell import CampbellResult, _extra, _orders, _speeds, _track, isotropic_supports
 from ..rotor.modal import check_speed
 from ..rotor.whirl import Orbits, classify_orbits
 from .assembly import TrainSystem, assemble_train
@@ -236,7 +236,7 @@ def train_modes(train, speed: float = 0.0, n_modes: int = 6, *, tolerance: float
 
 
 def train_campbell(train, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool = True,
-                   tolerance: float = 1e-6, xtol: float = 1e-10) -> CampbellResult:
+                   tolerance: float = 1e-6, xtol: float = 1e-10, progress=None) -> CampbellResult:
     """Campbell diagram over reference ``speeds`` (rad/s): ``n_modes`` tracked modes and the critical
     speeds of ``orders`` (omega_j(Omega) = k Omega: k times the *reference* speed; an excitation of
     another shaft at its own speed is the order k |ratio_i|)."""
@@ -247,6 +247,15 @@ def train_campbell(train, speeds, n_modes: int = 6, *, orders=(1.0,), critical: 
     n_cand = min(n_modes + _extra(n_modes), ts.n_dofs - ts.constrained.size)
     eig.solver.sweep(True)
     try:
-        return _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
+        result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol, progress)
     finally:
         eig.solver.sweep(False)
+    result.isotropic_supports = train_isotropic(ts)
+    return result
+
+
+def train_isotropic(ts: TrainSystem) -> bool:
+    """Every rotor shaft's supports and every connection rotationally symmetric (a gear mesh acting on
+    lateral DOFs is not: its line of action is one direction)."""
+    return (all(isotropic_supports(b.rs.rotor) for b in ts.blocks if b.rs is not None)
+            and all(c.isotropic(ts) for c in ts.train.connections))

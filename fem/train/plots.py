@@ -66,6 +66,10 @@ def plot_train_campbell(camp, path, *, title: str = "", ratios: dict | None = No
     if crit:
         ax.plot([c.speed_rpm for c in crit], [c.frequency_rad_s / (2 * np.pi) for c in crit], "o", mfc="none",
                 mec="k", ms=7, label="critical speeds")
+    back = getattr(camp, "backward_crossings", [])
+    if back:
+        ax.plot([c.speed_rpm for c in back], [c.frequency_rad_s / (2 * np.pi) for c in back], "s", mfc="none",
+                mec="r", ms=6, label="backward-whirl crossings")
     ax.set_ylim(0, top)
     ax.set_ylabel("damped natural frequency [Hz]")
     ax.set_title(title or "Campbell diagram", fontsize=10)

@@ -656,7 +656,8 @@ def compressor_campbell():
     rotor with three impellers; helical mesh 150/25, the pinion at -6 x the motor speed), found on the Campbell
     diagram by Brent's method on omega_j(Omega) = k Omega (orders 1 and 6 of the motor speed), checked by an
     independent dense solve (validation/analytic/geared.eigenvalues: dense shift-invert eig of the first-order
-    form of the same matrices at each critical speed): some eigenvalue has Im lam = k Omega_c, 1e-8.  And the
+    form of the same matrices at each critical speed and each backward-whirl crossing): some eigenvalue has
+    Im lam = k Omega_c, 1e-8.  And the
     pinion's speed in the model is -6 x the motor's (the kinematic ratio of the mesh), exactly."""
     from fem.study import Study
 
@@ -665,7 +666,7 @@ def compressor_campbell():
     camp = study.campbell()
     out = [check("pinion speed ratio = -150/25", "kinematics of the external mesh", "Omega_pinion / Omega_motor",
                  -6.0, ts.ratios["pinion"], 1e-14)]
-    for c in camp.critical_speeds:
+    for c in camp.crossings:               # critical speeds (forward, mixed, torsion) and backward crossings
         sys_ = ts.system_at(c.speed_rad_s)
         M, K, C, G = (np.asarray(A.toarray()) for A in (sys_.M, sys_.K, sys_.C, sys_.G))
         f = sys_.free

@@ -99,7 +99,7 @@ def friswell_roundtrip():
                              tol, scale=1.0))
         crit = np.asarray(r["critical"]["wd"])
         cc = campbell(rotor, np.linspace(0.0, 1.2 * crit.max(), 41), 16, orders=(1.0,))
-        roots = np.array([c.speed_rad_s for c in cc.critical_speeds])
+        roots = np.array([c.speed_rad_s for c in cc.crossings])
         for w in crit:
             k = int(np.argmin(np.abs(roots - w)))
             out.append(check(name, SRC + ", run_critical_speed", f"{var}: critical speed near {w:.3f} rad/s", w,

@@ -472,10 +472,15 @@ class CampbellTable(Table):
     """Excitation orders k of the lines omega = k Omega (1: synchronous)."""
     critical: bool = True
     """Find the critical speeds (roots of omega_j(Omega) = k Omega by Brent's method)."""
+    operating_range: Annotated[list[Positive["rad/s"]], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rad/s, shaded on the diagram (default: [unbalance_response]'s)."""
+    operating_range_rpm: Annotated[list[Positive["rpm"]], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rev/min."""
 
     @model_validator(mode="after")
     def _speeds(self):
         _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        _one_of(self, ("operating_range", "operating_range_rpm"), required=False)
         return self
 
 
@@ -588,4 +593,115 @@ class RunUpTable(Table):
     def _speeds(self):
         _one_of(self, ("speed_start", "speed_start_rpm"), required=True)
         _one_of(self, ("speed_end", "speed_end_rpm"), required=True)
+        return self
+
+
+class StaticLoadTable(Table):
+    """``[[static.load]]``: a static point force at a node (N)."""
+
+    x: Real["m"]
+    """Position, m (a node)."""
+    fy: Real["N"] = 0.0
+    """Force along y, N."""
+    fz: Real["N"] = 0.0
+    """Force along z, N."""
+    fx: Real["N"] = 0.0
+    """Axial force, N (dofs = "full")."""
+
+
+class StaticTable(Table):
+    """``[static]``: the static deflection of ``drivefem static`` (sag under gravity and point loads,
+    bearing loads); all keys optional (default: gravity 9.81 m/s^2 along -z, bearings at rest)."""
+
+    gravity: Annotated[list[Real["m/s^2"]], Field(min_length=3, max_length=3)] = [0.0, 0.0, -9.81]
+    """Acceleration of gravity (g_x, g_y, g_z), m/s^2."""
+    speed: NonNegative["rad/s"] | None = None
+    """Speed at which tabulated bearings are taken, rad/s (or speed_rpm; default: the [analysis] speed, else 0)."""
+    speed_rpm: NonNegative["rpm"] | None = None
+    """The same, rev/min."""
+    load: Annotated[list[StaticLoadTable], Field(default_factory=list)]
+    """[[static.load]]: point forces."""
+
+    @model_validator(mode="after")
+    def _speed(self):
+        _one_of(self, ("speed", "speed_rpm"), required=False)
+        return self
+
+
+class CriticalMapTable(Table):
+    """``[critical_map]``: the undamped critical speed map of ``drivefem critical-map`` (synchronous
+    critical speeds with every bearing replaced by an isotropic one of each stiffness), with the
+    model's own bearing stiffness overlaid; all keys optional."""
+
+    stiffness: Annotated[list[Positive["N/m"]], Field(min_length=2, max_length=2)] | None = None
+    """[lowest, highest] bearing stiffness, N/m (default: two decades either side of the model's bearings)."""
+    points: Integer(ge=3, le=400) = 41
+    """Stiffness values, logarithmically spaced."""
+    modes: Count = 4
+    """Forward critical speeds drawn (the lowest)."""
+    bearings: list[str] | None = None
+    """Names of the [[rotor.bearing]]s the map varies (default: every one with a positive direct stiffness);
+    the others (seals, dampers) are left out of the map."""
+
+
+class Level1StageTable(Table):
+    """``[[stability.api_level1.stage]]``: an impeller or axial stage (Wachel's anticipated cross-coupling)."""
+
+    x: Real["m"]
+    """Position, m."""
+    power: Positive["W"]
+    """Rated power of the stage, W."""
+    diameter: Positive["m"]
+    """Impeller diameter D_c, m (axial: blade pitch diameter D_t)."""
+    width: Positive["m"]
+    """Smaller of impeller discharge width and diffuser width H_c, m (axial: effective blade height H_t)."""
+    density_ratio: Positive["1"] = 1.0
+    """Discharge / suction gas density of the stage (centrifugal)."""
+    name: str = ""
+    """A name for reports."""
+
+
+class Level1Table(Table):
+    """``[stability.api_level1]``: the API 617 (7th ed.) / API RP 684 (2nd ed.) Level I screening:
+    log decrement of the first forward mode against cross-coupling 0 ... 10 Q_A at the maximum
+    continuous speed; Level II is required when Q0/QA < 2 or the log decrement at QA < 0.1."""
+
+    speed: Positive["rad/s"] | None = None
+    """Maximum continuous speed, rad/s (or speed_rpm; default: the top of the operating range)."""
+    speed_rpm: Positive["rpm"] | None = None
+    """Maximum continuous speed, rev/min."""
+    machine: Literal["centrifugal", "axial"] = "centrifugal"
+    """centrifugal (B_c = 3, density ratio) or axial (turbines, axial compressors: B_t = 1.5)."""
+    placement: Literal["auto", "mid-span", "stages"] = "auto"
+    """Where Q acts: mid-span (between-bearing rotors), the stages (overhung), auto (mid-span when every stage is
+    between the bearings)."""
+    exclude: list[str] = []
+    """Names of [[rotor.bearing]]s left out (seals: Q_A stands for them at Level I)."""
+    points: Integer(ge=3, le=201) = 21
+    """Cross-coupling values from 0 to 10 Q_A."""
+    stage: Annotated[list[Level1StageTable], Field(min_length=1)]
+    """[[stability.api_level1.stage]]: the stages."""
+
+    @model_validator(mode="after")
+    def _speed(self):
+        _one_of(self, ("speed", "speed_rpm"), required=False)
+        return self
+
+
+class StabilityTable(Table):
+    """``[stability]``: ``drivefem stability``: the stability threshold (lowest speed where a tracked
+    mode's log decrement crosses zero) over a speed range, and optionally the API Level I screening."""
+
+    speeds: SpeedList | None = None
+    """Speeds scanned, rad/s (> 0; the grid brackets, Brent's method converges): a list or a grid."""
+    speeds_rpm: SpeedListRpm | None = None
+    """The same, rev/min (default: the [campbell] speeds)."""
+    modes: Count | None = None
+    """Tracked modes (default: [campbell] modes, [analysis] modes, else 6)."""
+    api_level1: Level1Table | None = None
+    """[stability.api_level1]: the API Level I screening."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=False)
         return self

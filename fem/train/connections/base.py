@@ -139,6 +139,11 @@ class Connection:
         """(linear remainder, elements, exogenous keys) for the time simulation and the steady states."""
         return self.coordinates(ts), [], {}
 
+    def isotropic(self, ts) -> bool:
+        """Whether the connection's lateral stiffness and damping are rotationally symmetric about x (then
+        forward and backward whirl stay apart, :func:`fem.rotor.campbell.isotropic_supports`)."""
+        return True
+
     def modulations(self, ts) -> list:
         return []
 

@@ -216,6 +216,10 @@ class GearMesh(Connection):
         """Whether either gear has a DOF besides its rotation about x (then the flanks act on their own lines)."""
         return any(m != "rx" and ts.port(p).motions.get(m) for p in self.ports for m in MOTIONS)
 
+    def isotropic(self, ts) -> bool:
+        """A line of action is one direction: with lateral DOFs the mesh is anisotropic."""
+        return not self.lateral(ts)
+
     def coordinates(self, ts) -> list[Coord]:
         g = self.geometry(ts)
         return [self._coordinate(ts, g["n"], "line of action", self.stiffness, self.damping)]
