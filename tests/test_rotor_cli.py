@@ -86,7 +86,10 @@ def test_forced_unbalance_response_contract(tmp_path):
     assert d["omega_rad_s"][0] == pytest.approx(200 * np.pi / 30)
     first = min((p for p in d["peaks"] if p["probe"] == 0), key=lambda p: p["speed_rad_s"])
     assert first["amplification_factor"] > 2.5 and first["passes"] is True
-    assert csv.read_text().splitlines()[0].startswith("speed_rpm,speed_rad_s,major@x=0.5 amplitude")
+    assert csv.read_text().splitlines()[0].startswith("speed_rpm,speed_rad_s,disc 1.major amplitude")   # the file's names
+    assert d["outputs"] == ["disc 1.major", "disc 2.major"]
+    assert {n for n, o in d["named_outputs"].items() if o["source"] == "bearing"} == \
+        {f"bearing[{i}] x={x}.force_{c}" for i, x in ((1, "0"), (2, "1.5")) for c in "yz"}
 
 
 def test_compressor_speed_dependent_bearings_and_seal(tmp_path):

@@ -97,9 +97,11 @@ def test_forced_plot_file_or_directory(tmp_path, capsys, figures):
     assert main(["forced", str(FAN), "--plot", str(d)]) == 0
     names = sorted(p.name for p in d.iterdir())
     assert names[0] == "bode.png" and len([n for n in names if n.startswith("polar_")]) == 2
+    assert "loads.png" in names and (tmp_path / "bode_loads.png").is_file()     # the named outputs' amplitudes
     _standards(figures, "")
     assert {k: any("Overhung fan" in t for t in r["titles"]) for k, r in figures.items()} == \
-        {"bode.png": True, **{n: True for n in names if n.startswith("polar_")}}
+        {"bode.png": True, "bode_loads.png": False, "loads.png": True,     # bode_loads.png: the Jeffcott rotor's
+         **{n: True for n in names if n.startswith("polar_")}}
     capsys.readouterr()
     assert main(["forced", str(JEFFCOTT), "--plot", str(tmp_path / "bode.txt")]) == 2
     assert "a .png file (one figure) or a directory" in capsys.readouterr().err

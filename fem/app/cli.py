@@ -28,6 +28,8 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--plot", help="write a PNG line plot of the mode shapes here (FE models)")
     m.add_argument("--vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
     m.add_argument("--png", help="render one PNG per mode off-screen into this directory (FE models)")
+    m.add_argument("--csv", help="write the modes here: frequency and, for lumped and hybrid files, the load "
+                   "shape of every output (one row per mode)")
     m.set_defaults(func=commands.modal)
     r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data; "
                        "rotor files: the whirl of each lateral complex mode at the [analysis] speed")
@@ -57,6 +59,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--json")
     s.add_argument("--csv")
     s.add_argument("--png", help="directory for time plots and phase portraits")
+    s.add_argument("--h5", help="write the time history (named outputs, states, events) to this HDF5 file "
+                   "(layout drivefem.history: docs/outputs.md)")
     s.set_defaults(func=commands.simulate)
     w = sub.add_parser("sweep", help="evaluate a grid of parameter points ([sweep] table) on Dask")
     w.add_argument("model")

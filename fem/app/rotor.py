@@ -19,12 +19,13 @@ pictures)."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import check_output_path, columns, contract, tables, write_csv, write_json
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -98,17 +99,31 @@ def _linear_note(study) -> None:
               "analysis sees the rotor free of contact", file=sys.stderr)
 
 
+def _rub_records(study) -> list | None:
+    """The linearisation record of the [[rub]] clearances (open: the linear analyses see no contact)."""
+    rubs = getattr(study.doc, "rub", None) or []
+    return [{"element": r.name or f"rub {i} at x = {r.x:g} m", "kind": "rub", "state": "open", "declared": False,
+             "note": "open: no contact (the clearance acts only in drivefem simulate)"}
+            for i, r in enumerate(rubs, 1)] or None
+
+
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False, plot=False, png=True)
+    _check_outputs(args, json=False, plot=False, png=True, csv=False)
     if getattr(args, "vtu", None):
-        raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
-                         "for a rotor model file")
+        raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --png (3D whirl "
+                         "pictures) for a rotor model file")
     study = _load(args.model)
     _linear_note(study)
     res = study.modal(args.modes)
-    _emit(args, "modal", study, contract.modal_data(study, res))
+    shapes = study.outputs(res)
+    data = contract.with_outputs(contract.modal_data(study, res) | {"linearisation": _rub_records(study)}, shapes)
+    _emit(args, "modal", study, data)
     modal_table(study, res)
+    tables.outputs_lines(data)
+    if getattr(args, "csv", None):
+        columns.write(args.csv, columns.modal(res, shapes))
+        print(f"wrote {args.csv}")
     if args.plot:
         from ..rotor.plots import plot_mode_orbits
 
@@ -193,10 +208,13 @@ def forced(args) -> int:
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
-    _emit(args, "forced", study, contract.forced_data(study, res))
+    loads = study.outputs(res)
+    data = contract.with_outputs(contract.forced_data(study, res) | {"linearisation": _rub_records(study)}, loads)
+    _emit(args, "forced", study, data)
     forced_table(study, res, all_rows=args.all)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *response_columns(res))
+        write_csv(args.csv, *response_columns(res, loads))
         print(f"wrote {args.csv}")
     if args.plot:
         from ..rotor.plots import plot_bode, plot_polar, probe_label
@@ -209,6 +227,12 @@ def forced(args) -> int:
             for j, p in enumerate(res.probes):
                 name = _file_name(probe_label(p))
                 print(f"wrote {plot_polar(res, folder / f'polar_{j + 1}_{name}.png', j, title=study.title)}")
+        if loads is not None and loads.channels:
+            from ..output.figures import plot_output_amplitudes
+
+            path = (one.with_name(one.stem + "_loads" + (one.suffix or ".png")) if one is not None
+                    else folder / "loads.png")
+            print(f"wrote {plot_output_amplitudes(loads, path, study.title)}")
     if getattr(args, "html", None):
         from ..output.html import bode_html
 
@@ -219,7 +243,7 @@ def forced(args) -> int:
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
     out = sys.stdout if out is None else out
     print(f"{study.title}\nunbalance response: {res.method}", file=out)
-    hdr = "".join(f" | {p.direction + '@' + format(p.x, 'g'):>22}" for p in res.probes)
+    hdr = "".join(f" | {p.label[:22]:>22}" for p in res.probes)
     print(f"{'rev/min':>10} {'rad/s':>10}{hdr}\n{'':>21}" + "".join(f" | {'amp [m]':>11}{'lag':>11}" for _ in res.probes),
           file=out)
     s = res.speeds_rad_s
@@ -237,21 +261,27 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
         sm = "" if pk.separation_margin is None else f", separation margin {pk.separation_margin:.1f} %"
         req = "" if pk.required_margin is None else f" (required {pk.required_margin:.1f} %: " + \
             ("ok" if pk.passes else "FAILS") + ")"
-        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.direction}@x={p.x:g}: "
+        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.label}: "
               f"{pk.amplitude:.4e} m, AF {af}{sm}{req}" + (f"; {pk.note}" if pk.note else ""), file=out)
     for w in res.warnings:
         print(f"warning: {w}", file=out)
 
 
-def response_columns(res) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe."""
-    head = ["speed_rpm", "speed_rad_s"] + [f"{p.direction}@x={p.x:g} {q}" for p in res.probes
+def response_columns(res, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe and of every named output
+    (bearing reactions, section loads: ``loads``, :class:`fem.loads.analyses.NamedOutputs`)."""
+    head = ["speed_rpm", "speed_rad_s"] + [f"{p.label} {q}" for p in res.probes
                                            for q in ("amplitude", "lag_deg", "re", "im")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} {q}" for n in names for q in ("amplitude", "lag_deg", "re", "im")]
     rows = []
     for j, s in enumerate(res.speeds_rad_s):
         row = [s * RPM, s]
         for p in res.probes:
             row += [p.amplitude[j], p.phase_lag_deg[j], p.value[j].real, p.value[j].imag]
+        for k in range(len(names)):
+            z = complex(loads.values[k, j])
+            row += [abs(z), float(np.mod(-np.degrees(np.angle(z)), 360.0)), z.real, z.imag]
         rows.append(row)
     return head, rows
 
@@ -274,12 +304,14 @@ def campbell(args) -> int:
     op = operating_range(study.doc)
     with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
         camp = study.campbell(args.modes, progress=update)
-    data = contract.campbell_data(study, camp)
+    loads = study.outputs(camp)
+    data = contract.with_outputs(contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)}, loads)
     data["operating_range_rad_s"] = None if op is None else list(op)
     _emit(args, "campbell", study, data)
     campbell_table(study, camp)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *campbell_columns(camp))
+        write_csv(args.csv, *campbell_columns(camp, loads))
         print(f"wrote {args.csv}")
     figure = getattr(args, "plot", None) or args.png
     if figure:
@@ -326,43 +358,47 @@ def campbell_table(study, camp, out=None) -> None:
             print("  " + _crossing_line(c, "backward crossing"), file=out)
 
 
-def campbell_columns(camp) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode."""
+def campbell_columns(camp, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode,
+    then the amplitude of every named output (the reactions of each tracked mode: ``loads``)."""
     head = ["speed_rpm", "speed_rad_s"] + [f"mode{j + 1} {q}" for j in range(camp.n_modes)
                                            for q in ("omega_rad_s", "log_decrement", "whirl")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} amplitude" for n in names]
     rows = []
     for i, s in enumerate(camp.speeds_rad_s):
         row = [s * RPM, s]
         for j in range(camp.n_modes):
             ld = camp.log_decrement[i, j]
             row += [camp.omega_damped_rad_s[i, j], ld if np.isfinite(ld) else "", camp.whirl[i][j]]
+        row += [abs(complex(loads.values[k, i])) for k in range(len(names))]
         rows.append(row)
     return head, rows
 
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json=False, csv=False, png=True, h5=False)
     from .progress import progress_bar
 
     study = _load(args.model)
     with progress_bar(0.0, 1.0, "run-up", "") as update:
         res = study.run_up(progress=update)
-    data = contract.run_up_data(study, res)
+    outs = study.outputs(res)
+    data = contract.with_outputs(contract.run_up_data(study, res), outs)
     whirl = _whirl(res)
     if whirl is not None:
         data["whirl"] = whirl[1].to_dict()
     doc = _emit(args, "simulate", study, data)
     run_up_table(study, res)
+    tables.outputs_lines(data)
     if whirl is not None:
         whirl_table(whirl[1])
     if args.csv:
-        head = ["t", "speed_rad_s"] + [f"{c}@x={x:g}" for x in res.probe_x for c in ("y", "z")] + \
-            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")]
-        cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
-            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))]
-        write_csv(args.csv, head, np.column_stack(cols).tolist())
+        write_csv(args.csv, *run_up_columns(study, res, outs))
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        print(f"wrote {_run_up_h5(study, res, outs, args.h5)}")
     if args.png:
         from pathlib import Path
 
@@ -373,6 +409,12 @@ def simulate(args) -> int:
         print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
         print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+        if outs.channels:
+            from ..output.figures import plot_loads
+
+            loads = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe")]
+            if loads:
+                print(f"wrote {plot_loads(outs.subset(loads), out / 'loads.png', study.title)}")
         if whirl is not None:
             from ..rotor.plots import plot_cascade, plot_whirl_onset
 
@@ -433,6 +475,40 @@ def whirl_table(onset, out=None) -> None:
           f"{onset.growth:.3g} x", file=out)
 
 
+def run_up_columns(study, res, outs) -> tuple[list[str], list]:
+    """CSV of a run-up: t, speed, the orbit (y, z) at every probe, normal force, slip and contact flag of
+    every rub, then the other named outputs (bearing reactions, section loads); with [[output]] tables: t
+    and those outputs only."""
+    extra = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe", "rub")]
+    if getattr(study.doc, "output", None):
+        return ["t"] + outs.names, np.column_stack([res.t] + list(outs.values)).tolist()
+    head = ["t", "speed_rad_s"] + [_probe_column(res, k, c) for k in range(res.probe_x.size) for c in ("y", "z")] + \
+        [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")] + \
+        [outs.channels[k].name for k in extra]
+    cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
+        [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))] + \
+        [outs.values[k] for k in extra]
+    return head, np.column_stack(cols).tolist()
+
+
+def _run_up_h5(study, res, outs, path):
+    """The run-up's time history in the --h5 container (docs/outputs.md): its named outputs (speed, probe
+    orbits, rub normal forces, bearing reactions, section loads) and the rub events."""
+    from types import SimpleNamespace
+
+    from ..output.history import write_history
+
+    events = [SimpleNamespace(t=e["t"], kind=e["kind"], element=e.get("rub", ""), impulse=0.0) for e in res.events]
+    return write_history(path, command="simulate", title=study.title, kind="rotor", t=res.t, outputs=outs,
+                         events=events)
+
+
+def _probe_column(res, k: int, c: str) -> str:
+    """The CSV column of probe k's orbit component c: <name>.<c> where a named thing is there, else c@x=<x>."""
+    n = res.probe_names[k] if k < len(res.probe_names) else ""
+    return f"{n}.{c}" if n else f"{c}@x={res.probe_x[k]:g}"
+
+
 def _lowest(values) -> str:
     known = [v for v in values if v is not None]
     return f"{min(known):.12f}" if known else ("n/a (free rotor)" if values else "n/a (no rub)")
@@ -453,7 +529,9 @@ def run_up_table(study, res, out=None) -> None:
     for k, x in enumerate(res.probe_x):
         r = np.hypot(res.orbit_y[:, k], res.orbit_z[:, k])
         j = int(np.argmax(r))
-        print(f"  probe x = {x:g} m: peak orbit radius {r[j]:.4e} m at {res.speed[j] * RPM:.1f} rev/min", file=out)
+        name = res.probe_names[k] if k < len(res.probe_names) and res.probe_names[k] else ""
+        print(f"  probe {name + ' ' if name else ''}x = {x:g} m: peak orbit radius {r[j]:.4e} m at "
+              f"{res.speed[j] * RPM:.1f} rev/min", file=out)
     for r in res.rubs:
         fc = r.first_contact
         first = "never" if fc is None else f"first at t = {fc['t']:.5g} s ({fc['speed_rad_s'] * RPM:.1f} rev/min)"

@@ -91,6 +91,9 @@ class CampbellResult:
     orders: tuple = (1.0,)
     warnings: list = field(default_factory=list)
     isotropic_supports: bool | None = None    # every support rotationally symmetric (None: not known)
+    shapes: list = field(default_factory=list, repr=False)       # per speed: (n_dofs, n_modes) tracked complex
+    #                                                              shapes (largest DOF 1), not in to_dict
+    eigenvalues: np.ndarray | None = field(default=None, repr=False)   # (n_speeds, n_modes) their lambda
 
     @property
     def n_modes(self) -> int:
@@ -213,6 +216,7 @@ def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol, progress=
     wn, ld, zeta = np.zeros_like(wd), np.zeros_like(wd), np.zeros_like(wd)
     whirl, mac_min, res_max = [], np.ones(ns), np.zeros(ns)
     shapes_track = []
+    lam = np.zeros((ns, n_modes), dtype=complex)
     warnings = []
     prev = prev_f = None
     kinds = None
@@ -237,9 +241,10 @@ def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol, progress=
         shapes_track.append(prev)
         if progress is not None:
             progress(i + 1, ns)
+        lam[i] = m.eigenvalues[idx]
     result = CampbellResult(speeds_rad_s=s, omega_damped_rad_s=wd, natural_frequency_rad_s=wn, log_decrement=ld,
                             damping_ratio=zeta, whirl=whirl, kind=kinds, mac_min=mac_min, residual_max=res_max,
-                            orders=orders, warnings=warnings)
+                            orders=orders, warnings=warnings, shapes=shapes_track, eigenvalues=lam)
     if critical:
         result.crossings = _critical_speeds(eig, result, shapes_track, n_cand, tolerance, xtol, progress)
     return result

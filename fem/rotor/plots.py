@@ -157,7 +157,10 @@ def plot_campbell(camp, path, *, title: str = "", log_decrement: bool = True, op
 
 def probe_label(p) -> str:
     """A probe's name: its label from the model file when it has one, else position and direction."""
-    return getattr(p, "label", None) or f"x = {p.x:g} m ({p.direction})"
+    name = getattr(p, "label", None) or getattr(p, "name", None)
+    if getattr(p, "name", None) and not getattr(p, "label", None):
+        return f"{p.name} (x = {p.x:g} m, {p.direction})"
+    return name or f"x = {p.x:g} m ({p.direction})"
 
 
 def unwrapped_lag(phase_lag_deg) -> np.ndarray:
@@ -408,7 +411,9 @@ def plot_run_up(res, path, *, title: str = "") -> Path:
     s = res.speed * RPM
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7.5, 6.5), sharex=True, gridspec_kw={"height_ratios": [2, 1.2]})
     for k, x in enumerate(res.probe_x):
-        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8, label=f"x = {x:g} m")
+        name = res.probe_names[k] if k < len(getattr(res, "probe_names", [])) else ""
+        ax.plot(s, 1e3 * np.hypot(res.orbit_y[:, k], res.orbit_z[:, k]), lw=0.8,
+                label=f"{name} (x = {x:g} m)" if name else f"x = {x:g} m")
     for r in res.rubs:
         ax.axhline(1e3 * r.clearance, color="k", ls="--", lw=0.8)
         ax2.plot(s, r.normal_force, lw=0.8, label=r.name)
@@ -512,7 +517,8 @@ def plot_run_up_orbits(res, path, *, probe: int = 0, windows: int = 4, title: st
         ax.set_title(f"{res.speed[k] * RPM:.0f} rev/min", fontsize=9)
         ax.set_xlabel("y [mm]")
     axes[0].set_ylabel("z [mm]")
-    fig.suptitle(title or f"orbits at x = {x:g} m (last 3 revolutions)"
+    name = res.probe_names[probe] if probe < len(getattr(res, "probe_names", [])) else ""
+    fig.suptitle(title or f"orbits at {name + ', ' if name else ''}x = {x:g} m (last 3 revolutions)"
                  + (f"; dashed: {brg.name}'s clearance" if brg is not None and rub is None else ""), fontsize=10)
     return _save(fig, path)
 

@@ -48,9 +48,9 @@ OUTPUT_KINDS = {
 }
 #: Output options besides --json, per command: (option, what it names).
 SECONDARY_OUTPUTS = {
-    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir")),
+    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir"), ("--csv", "file")),
     "forced": (("--csv", "file"), ("--plot", "file")),
-    "simulate": (("--csv", "file"), ("--png", "dir")),
+    "simulate": (("--csv", "file"), ("--png", "dir"), ("--h5", "file")),
     "sweep": (("--out", "dir"),),
     "render": (("--out", "dir"),),
 }

@@ -219,7 +219,7 @@ def response_spec(doc) -> ResponseSpec:
     op = t.operating_range if t.operating_range_rpm is None else [v * RPM for v in t.operating_range_rpm]
     if op is not None and not op[0] <= op[1]:
         raise ModelError("[unbalance_response]", "operating_range", list(op), "[min, max] with min <= max")
-    probes = [Probe(p.x, p.direction) for p in t.probe] or None
+    probes = [Probe(p.x, p.direction, p.name or "") for p in t.probe] or None
     unb = _unbalances(doc)
     return ResponseSpec(unbalances=unb, speeds=speeds, probes=probes,
                         operating_range=None if op is None else (float(op[0]), float(op[1])), find_peaks=t.peaks)

@@ -25,6 +25,7 @@ from .drive import Drive
 from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
+from .output import Output
 from .rotor import (CampbellTable, CriticalMapTable, RotorAnalysis, RotorTable, RubTable, RunUpTable, StabilityTable,
                     StaticTable, UnbalanceResponseTable, UnbalanceTable)
 from .simulation import Constants, Initial, Reduction, Simulation
@@ -83,6 +84,8 @@ class LumpedTables(Table):
     """[[spring]]: linear springs (with optional parallel dashpots)."""
     damper: _array(Damper)
     """[[damper]]: viscous dampers."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: every element's deflection and force, every reaction)."""
 
 
 class TimeTables(Table):
@@ -140,6 +143,9 @@ def _frequencies_rule(doc) -> None:
 
 class FEFile(ModelFileBase, FETables, LinearTables, ExcitationTables):
     """An FE model file: a shaft, rod or beam with modal or harmonic analysis."""
+
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations and every support's reaction)."""
 
     @model_validator(mode="after")
     def _rules(self):
@@ -215,6 +221,8 @@ class RotorFile(ModelFileBase):
     """[critical_map]: stiffness range of the undamped critical speed map (drivefem critical-map)."""
     stability: StabilityTable | None = None
     """[stability]: speeds of the stability threshold and the API Level I screening (drivefem stability)."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations, every bearing's reaction)."""
 
 
 class TrainFile(ModelFileBase):
@@ -311,7 +319,7 @@ HINTS = {
                   for k in ("load", "base_motion", "response")}},
     "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
     "rotor": {**{k: "not a table of rotor files (a [rotor] file has [rotor], [analysis], [campbell], "
-                 "[unbalance_response], [[unbalance]], [run_up], [[rub]], [static], [critical_map], [stability] and title)" for k in OTHER_KIND},
+                 "[unbalance_response], [[unbalance]], [run_up], [[rub]], [static], [critical_map], [stability], [[output]] and title)" for k in OTHER_KIND},
               "simulation": "in a rotor file the transient run is [run_up] (with [[rub]] clearances)",
               "material": "in a rotor file the shaft material is [rotor.material]",
               "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",

@@ -105,6 +105,9 @@ class Friction(Coordinate):
     restick: Literal["static", "kinetic"] = "static"
     """At a stop during slip: stick within the static limit ("static") or within the kinetic level,
     else reverse at once ("kinetic", seed 000)."""
+    linearise: Literal["sliding", "stuck"] | None = None
+    """Linear analyses (modal, forced): "sliding" (default; the constant kinetic level: no stiffness, the
+    viscous term as damping) or "stuck" (the coordinate held to the counter-surface)."""
 
     @model_validator(mode="after")
     def _levels(self):
@@ -158,6 +161,9 @@ class OneSided(Coordinate):
     """Element force magnitude at s = 0 (initial tension F0 of a strand)."""
     side: Literal["tension", "compression"] | None = None
     """Which side carries load: "tension" (engaged when stretched) or "compression"."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (engaged: a spring k; a preloaded strand taut) or "open" (slack); default:
+    its state at s = 0 (closed when preloaded)."""
 
     LEGACY_SIDE: ClassVar[dict] = {"lumped": "tension", "hybrid": "compression"}
 
@@ -205,6 +211,9 @@ class Gap(Coordinate):
     """Exact piecewise-linear law (11.1) or the smooth arctan law (11.2)."""
     L: Positive["1/m", "1/rad"] = 1e3
     """Sharpness of the arctan law (11.2)."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (a spring of its contact stiffness k: the default of a clearance, a gear
+    mesh in mesh) or "open" (no force); a stop (one bound) defaults to its state at s = 0."""
 
     @model_validator(mode="after")
     def _bounds(self):
@@ -223,7 +232,7 @@ class Gap(Coordinate):
     def element(self, where, kind, weight=None):
         if self.stop:
             side, bound = (1, self.upper) if self.upper is not None else (-1, self.lower)
-            return E.OneSided, dict(k=self.k, s_open=bound, side=side), False
+            return E.OneSided, dict(k=self.k, s_open=bound, side=side, linearise=self.linearise), False
         lower, upper = (-self.delta, self.delta) if self.delta is not None else (self.lower, self.upper)
         return E.Gap, dict(k=self.k, lower=lower, upper=upper, law=self.law, L=self.L), False
 
@@ -241,6 +250,8 @@ class Impact(Coordinate):
     """"lower": s >= stop; "upper": s <= stop."""
     v_rest: Positive["m/s", "rad/s"] | None = None
     """Rebound speed below which the bouncing closes into persistent contact (default: relative 1e-9)."""
+    linearise: Literal["open", "closed"] | None = None
+    """Linear analyses: "open" (default: free flight) or "closed" (the coordinate held at the stop)."""
 
     @model_validator(mode="after")
     def _where_given(self):
@@ -259,6 +270,8 @@ class CubicSpring(Coordinate):
 
     k3: Real["N/m^3", "N*m/rad^3"]
     """Cubic stiffness (hardening for k3 > 0)."""
+    linearise: Literal["linear"] | None = None
+    """Linear analyses: "linear" (its linear part at s = 0: no stiffness)."""
 
     @model_validator(mode="after")
     def _where_given(self):
@@ -339,6 +352,8 @@ class Contact(Coordinate):
     """Lower bound of the clearance."""
     upper: Real["m", "rad"] | None = None
     """Upper bound of the clearance."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (default: its spring k and dashpot c) or "open" (no force)."""
 
     @model_validator(mode="after")
     def _bounds(self):
@@ -367,6 +382,9 @@ class Motor(Coordinate):
     """Electromagnetic time constant T_d, s (0: the static characteristic, no torque state)."""
     torque0: Real["N*m"] = 0.0
     """Torque at t = 0 (default 0: the motor switched on at t = 0; only with T > 0), N m."""
+    linearise: Literal["characteristic"] | None = None
+    """Linear analyses: "characteristic" (its dynamic characteristic as a complex stiffness in the forced
+    response; the undamped modes do not see it)."""
 
     @model_validator(mode="after")
     def _where_given(self):

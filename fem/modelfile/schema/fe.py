@@ -6,7 +6,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Discriminator, Tag, model_validator
 
-from .base import Count, NonNegative, Number, Positive, Real, Table, rule
+from .base import Count, Name, NonNegative, Number, Positive, Real, Table, rule
 
 
 class Material(Table):
@@ -138,6 +138,8 @@ class Segment(Table):
 class Support(Table):
     """``[[support]]`` at a node."""
 
+    name: Name | None = None
+    """Name of the support in the outputs (default: support[<index>] x=<x>)."""
     x: Real["m"]
     """Position along the shaft, m."""
     type: Literal["clamped", "pinned", "spring"] = "clamped"

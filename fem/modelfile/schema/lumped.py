@@ -186,6 +186,8 @@ class Spring(Table):
 
     one_coordinate: ClassVar[bool] = True
 
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: spring[<index>] <a>-<b>, e.g. spring[2] motor-pinion)."""
     between: Ends
     """The two ends: body/driver names, "ground", or (hybrid) FE nodes { x = .., dof = .. }."""
     ratios: Ratios = [1.0, 1.0]
@@ -211,6 +213,8 @@ class Spring(Table):
 class Damper(Table):
     """``[[damper]]``: a viscous damper acting on s = r_b x_b - r_a x_a."""
 
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: damper[<index>] <a>-<b>)."""
     between: Ends
     """The two ends: body/driver names, "ground", or (hybrid) FE nodes { x = .., dof = .. }."""
     ratios: Ratios = [1.0, 1.0]
@@ -222,6 +226,8 @@ class Damper(Table):
 class Gear(Table):
     """``[[gear]]``: rigid transmission x_b = ratio x_a, eliminated exactly (lumped models)."""
 
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: gear[<index>] <a>-<b>)."""
     between: Annotated[list[Annotated[str, Field(min_length=1)]], Field(min_length=2, max_length=2)]
     """[driving, driven] body names."""
     ratio: Real[RATIO]

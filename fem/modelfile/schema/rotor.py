@@ -491,6 +491,8 @@ class RotorProbe(Table):
     """Position, m (a node)."""
     direction: Literal["v", "w", "major"] = "major"
     """v, w, or the orbit's semi-major axis."""
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name of the output (default: the name of the disc, bearing or coupling at x, else direction@x=..)."""
 
 
 class UnbalanceResponseTable(Table):

@@ -11,7 +11,7 @@ from .base import Count, Number, Positive, Real, Table, rule
 METHOD_KEYS = {"event": ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "output_step"),
                "regularised": ("regularisation", "penalty", "memory_time", "rtol", "max_step"),
                "moreau": ("dt", "theta", "tol", "max_iter", "max_events")}
-COMMON_KEYS = ("t_end", "method", "energy", "samples")
+COMMON_KEYS = ("t_end", "method", "energy", "samples", "record_every")
 
 
 class Simulation(Table):
@@ -52,6 +52,9 @@ class Simulation(Table):
     """Moreau-Jean: tolerance of the contact/friction projections (default 1e-10)."""
     max_iter: Count | None = None
     """Moreau-Jean: iteration limit of the projections (default 2000)."""
+    record_every: Count = 1
+    """Write every record_every-th recorded sample of the time history (CSV, --h5, plots); event instants
+    are always written, and the summaries (peak, rms, ...) use every sample."""
 
     @model_validator(mode="after")
     def _method_keys(self):
