@@ -124,9 +124,21 @@ def test_cli_forced_simulate_parametric_of_trains(tmp_path):
     assert d["kind"] == "train" and d["force_balance_max_residual"] < 1e-10
     assert d["section_loads_static"]["intermediate"]["quantities"]
     out = tmp_path / "s.json"
-    assert main(["simulate", str(p), "--json", str(out)]) == 0
+    doc["simulation"]["record_every"] = 2
+    p = _write(tmp_path, doc)
+    assert main(["simulate", str(p), "--json", str(out), "--h5", str(tmp_path / "s.h5"), "--csv",
+                 str(tmp_path / "s.csv")]) == 0
     d = json.loads(out.read_text())
     assert d["force_balance"]["max_residual"] < 1e-10 and "stage 1" in d["connection_forces"]
+    named = d["named_outputs"]          # mesh forces with their load factors, bearing reactions (docs/outputs.md)
+    assert named["stage 1.force"]["unit"] == "N" and named["stage 1.force"]["peak"] == pytest.approx(
+        d["connection_forces"]["stage 1"]["max"], rel=1e-14)
+    assert named["output:bearing1@x=0.force_y"]["source"] == "bearing"
+    import h5py
+
+    with h5py.File(tmp_path / "s.h5") as h:
+        assert "stage 1.force" in [n.decode() for n in h["outputs/names"][()]] and h.attrs["record_every"] == 2
+        assert h["t"].size == d["history"]["samples"] and h.attrs["n_samples_recorded"] > h["t"].size
     doc = read_toml(EXAMPLES / "geared_mesh_parametric.toml")
     doc["parametric"].update(speeds={"start": 600.0, "stop": 720.0, "points": 5}, depth={"stop": 1.0, "points": 2})
     p = _write(tmp_path, doc, "p.toml")
@@ -180,6 +192,14 @@ def test_slip_coupling_sticks_when_the_load_catches_up():
     sticks = sim.result.event_times("stick")
     assert sticks.size == 1 and abs(sticks[0] - I * V / S) < 1e-12 * I * V / S
     assert sim.force_balance.max_residual < 1e-12
+    # the named output of the clutch is its friction torque: the slip torque S while it slips (on the
+    # load, positive: it drags the load forward), then the load's inertia force I a = 0 while stuck
+    outs = Study.parse(doc).outputs(sim)
+    T = outs.column("clutch.torque")
+    t = outs.axis_values
+    slipping, stuck = (t > 0) & (t < 0.99 * I * V / S), t > 1.01 * I * V / S
+    assert outs.channels[outs.names.index("clutch.torque")].unit == "N*m"
+    assert np.allclose(np.abs(T[slipping]), S, rtol=1e-12) and np.allclose(T[stuck], 0.0, atol=1e-9 * S)
     with pytest.raises(ModelError, match="slip coupling is rigid"):
         doc["coupling"][0]["k_torsion"] = 1e3
         Study.parse(doc).train

@@ -77,7 +77,7 @@ def _load(path):
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _check_outputs(args, json=False)
-    for opt in ("vtu", "png", "plot"):
+    for opt in ("vtu", "png", "plot", "csv"):
         if getattr(args, opt, None):
             raise ModelError("command line", "--" + opt, getattr(args, opt), "--json for a train model file (the "
                              "figures of a train are drawn by the Python API: fem.train.plots)")
@@ -270,24 +270,44 @@ def simulate(args) -> int:
     from ..output import tables
     from .progress import progress_bar
 
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json=False, csv=False, png=True, h5=False)
     study = _load(args.model)
     with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
         res = study.simulate(progress=update)
-    d = _emit(args, "simulate", study, res.to_dict())
+    r = res.result
+    outs = study.outputs(res)            # connection forces and bearing reactions (fem.train.outputs)
+    every = study.doc.simulation.record_every if study.doc.simulation is not None else 1
+    idx = None
+    if every > 1:
+        from ..loads.analyses import decimate
+
+        idx = decimate(r.t, every, [e.t for e in r.events])
+    data = contract.with_outputs(res.to_dict(), outs)
+    if getattr(args, "h5", None):
+        data["history"] = {"file": str(args.h5), "samples": int(r.t.size if idx is None else idx.size),
+                           "record_every": int(every)}
+    d = _emit(args, "simulate", study, data)
     tables.simulation_summary(study.title, d, out=sys.stdout)
     print(f"force balance of every shaft and body at every sample: max residual {d['force_balance']['max_residual']:.1e}")
     for k, v in d["connection_forces"].items():
         print(f"  {k}: force min {v['min']:.6g}, max {v['max']:.6g}, mean {v['mean']:.6g}")
     for k, v in d["bearing_forces"].items():
         print(f"  {k}: max radial force {v['max_radial']:.6g} N")
+    sel = np.arange(r.t.size) if idx is None else idx
     if args.csv:
-        r = res.result
-        cf = res.connection_forces()
-        head = ["t"] + [f"{n}.x" for n in r.names] + [f"{n}.v" for n in r.names] + [f"{k} force" for k in cf]
-        cols = [r.t] + list(r.x) + list(r.v) + list(cf.values())
+        head = ["t"] + [f"{n}.x" for n in r.names] + [f"{n}.v" for n in r.names] + outs.names
+        cols = [r.t[sel]] + list(np.asarray(r.x)[:, sel]) + list(np.asarray(r.v)[:, sel]) + list(outs.values[:, sel])
         write_csv(args.csv, head, np.column_stack(cols).tolist())
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        from ..output.history import write_history
+
+        has_e = np.size(r.energy) == r.t.size
+        write_history(args.h5, command="simulate", title=study.title, kind=study.kind, t=r.t[sel],
+                      outputs=outs.take(sel), states=(list(r.names), np.asarray(r.x)[:, sel], np.asarray(r.v)[:, sel]),
+                      energy=(np.asarray(r.energy)[sel], np.asarray(r.work)[sel]) if has_e else None, events=r.events,
+                      record_every=every, n_recorded=r.t.size)
+        print(f"wrote {args.h5}")
     if args.png:
         from ..train.plots import plot_train_simulation
 

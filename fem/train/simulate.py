@@ -83,18 +83,26 @@ class TrainSimulation:
         return out
 
     def connection_forces(self) -> dict:
-        """{connection name: force history} by the connection's own law (meshes: compression positive)."""
+        """{connection name: force history} by the connection's own law (meshes: compression positive;
+        couplings: per direction, the springs and dampers plus, on the torsion, the solver's force of a
+        backlash or slip element)."""
         ts = self.compiled.ts
         q, v, _ = self.field
         t = np.asarray(self.result.t)
         out = {}
         exo = self.exo_values()
+        elements = None
         for conn in ts.train.connections:
             if hasattr(conn, "mesh_force"):
                 out[conn.name] = conn.mesh_force(ts, q, v, t, exo, self.compiled.speed)
-            else:
-                for cd in conn.coordinates(ts):
-                    out[f"{conn.name}:{cd.label}"] = -cd.k * cd.of(q) - cd.c * cd.of(v)
+                continue
+            linear, parts, _ = conn.nonsmooth(ts, self.compiled.speed)
+            for cd in linear:
+                out[f"{conn.name}:{cd.label}"] = -cd.k * cd.of(q) - cd.c * cd.of(v)
+            for part in parts:
+                elements = self.element_forces() if elements is None else elements
+                key = f"{conn.name}:{part.coord.label}"
+                out[key] = out.get(key, 0.0) + elements[part.name]
         return out
 
     def element_forces(self) -> dict:
