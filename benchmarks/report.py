@@ -57,6 +57,7 @@ SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("sweep.py", ["--frequencies", "10", "--warm-cluster"], [], True),
     ("afc.py", [], [], True),
     ("loads.py", [], [], True),
+    ("geared.py", [], [], True),           # the dense baseline is one eig of 2786 x 2786 (~1.5 min quiet)
     ("afc_hybrid.py", [], [], False),
     ("solid.py", ["--paths", "release", "auto"], [], False),
     ("rotor.py", ["--quick"], [], False),

@@ -60,6 +60,12 @@ PINNED = {
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
     "two_mass_chain.toml": ["lumped-two-mass-chain"],
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
+    "geared_two_shaft_torsion.toml": ["geared-two-shaft-equivalent"],
+    "geared_ross_two_shaft.toml": ["geared-lateral-torsional-dense", "geared-lateral-torsional-ross"],
+    "geared_rattle.toml": ["geared-backlash-kahraman-singh"],
+    "geared_mesh_parametric.toml": ["geared-mesh-parametric-hill"],
+    "geared_two_stage.toml": ["geared-two-stage-loads"],
+    "geared_compressor_train.toml": ["geared-compressor-campbell"],
     "rotor_jeffcott_seal.toml": ["rotor-jeffcott-seal-cli"],
 }
 """Example file -> the validation cases that load it as their model."""
