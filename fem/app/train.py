@@ -20,7 +20,7 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import contract, write_csv, write_json
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -54,11 +54,12 @@ def is_train_file(path) -> bool:
     return any(k in doc for k in TRAIN_MARKERS)
 
 
-def _check_outputs(args, **options) -> None:
-    for attr, directory in options.items():
-        value = getattr(args, attr, None)
-        if value:
-            check_output_path(value, "--" + attr, directory=directory)
+def _check_outputs(args, command: str, **kinds) -> None:
+    """The one convention's checks before any work (:func:`fem.app.options.prepare`): old spellings,
+    ``--quiet``, every output path (``attr=kind``), two outputs on one path, plotly for ``--html``."""
+    from .options import prepare
+
+    prepare(args, command, **kinds)
 
 
 def _emit(args, command: str, study, data: dict) -> dict:
@@ -76,7 +77,7 @@ def _load(path):
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False)
+    _check_outputs(args, "modal", json="json")
     for opt in ("vtu", "png", "plot", "csv"):
         if getattr(args, opt, None):
             raise ModelError("command line", "--" + opt, getattr(args, opt), "--json for a train model file (the "
@@ -114,7 +115,7 @@ def modal_table(study, res, out=None) -> None:
 def campbell(args) -> int:
     from .rotor import campbell_columns, campbell_table
 
-    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
+    _check_outputs(args, "campbell", json="json", plot="plot", csv="csv", html="html")
     from .progress import count_bar
 
     study = _load(args.model)
@@ -126,7 +127,7 @@ def campbell(args) -> int:
     if args.csv:
         write_csv(args.csv, *campbell_columns(camp))
         print(f"wrote {args.csv}")
-    figure = getattr(args, "plot", None) or args.png
+    figure = getattr(args, "plot", None)
     if figure:
         from ..train.plots import plot_train_campbell
 
@@ -147,7 +148,7 @@ def campbell(args) -> int:
 def parametric(args) -> int:
     from ..modelfile.build.train import parametric as run
 
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, "parametric", json="json", plot="plot", csv="csv")
     study = _load(args.model)
     res = run(study)
     d = res.to_dict()
@@ -163,10 +164,10 @@ def parametric(args) -> int:
                 for i, e in enumerate(chart.depth) for j, w in enumerate(chart.omega_rad_s)]
         write_csv(args.csv, head, rows)
         print(f"wrote {args.csv}")
-    if args.png:
+    if getattr(args, "plot", None):
         from ..train.plots import plot_train_parametric
 
-        print(f"wrote {plot_train_parametric(res, args.png, title=study.title)}")
+        print(f"wrote {plot_train_parametric(res, args.plot, title=study.title)}")
     for w in d["warnings"]:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
@@ -196,7 +197,7 @@ def forced(args) -> int:
     from ..output import columns, tables
     from .progress import progress_bar
 
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, "forced", json="json", csv="csv", plot="plot")
     if getattr(args, "html", None):
         raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
                          "unbalance response); for a train file use --plot")
@@ -270,7 +271,7 @@ def simulate(args) -> int:
     from ..output import tables
     from .progress import progress_bar
 
-    _check_outputs(args, json=False, csv=False, png=True, h5=False)
+    _check_outputs(args, "simulate", json="json", csv="csv", plot="plot", h5="h5")
     study = _load(args.model)
     with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
         res = study.simulate(progress=update)
@@ -308,10 +309,10 @@ def simulate(args) -> int:
                       energy=(np.asarray(r.energy)[sel], np.asarray(r.work)[sel]) if has_e else None, events=r.events,
                       record_every=every, n_recorded=r.t.size)
         print(f"wrote {args.h5}")
-    if args.png:
+    if getattr(args, "plot", None):
         from ..train.plots import plot_train_simulation
 
-        for p in plot_train_simulation(res, args.png, title=study.title):
+        for p in plot_train_simulation(res, args.plot, title=study.title):
             print(f"wrote {p}")
     if str(d.get("reason", "")).startswith("interrupted"):
         from .exit_codes import EXIT_INTERRUPTED
