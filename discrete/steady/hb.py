@@ -36,15 +36,21 @@ class HBModel:
     Everything that depends on the model only (bases, exogenous terms by powers of omega, index maps)
     is built once."""
 
-    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None):
+    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None, kinks: str = "exact"):
         self.s = system
         self.H = int(harmonics)
         self.nu = int(nu)
         H = self.H
-        # discontinuous (friction sign) or kinked (one-sided, gap) forces: AFT sampling error ~ 1/N
+        if kinks not in ("exact", "sampled"):
+            raise ValueError(f"kinks = {kinks!r}: 'exact' | 'sampled'")
+        self.kinks = kinks
+        # piecewise-affine laws (gaps, stops, one-sided springs) integrated exactly over their crossings
+        # (piecewise.py) unless kinks = "sampled"; the others are sampled (AFT)
+        laws = [el.piecewise_law() if kinks == "exact" else None for el in system.elements]
+        # discontinuous (friction sign) or kinked (sampled one-sided, gap) forces: AFT sampling error ~ 1/N
         # resp. 1/N^2, so these get a denser default grid
-        smooth = min((el.smoothness for el in system.elements), default=2)
-        N = samples or (max(1024, 16 * H) if smooth == 0 else max(256, 16 * H) if smooth == 1 else max(64, 8 * H + 4))
+        smooth = min((2 if law is not None else el.smoothness for el, law in zip(system.elements, laws)), default=2)
+        N = samples or default_samples(H, smooth)
         self.N = N
         th = 2 * np.pi * np.arange(N) / N
         G = _basis(H, th)
@@ -85,6 +91,34 @@ class HBModel:
         self._block_map = csr_matrix((coef.ravel(), (cols.ravel(), idx.ravel())), shape=(self.m * self.m, 4 * self.m))
         self._bases = {}
         self._lin = (None, None, None, None)
+        self._setup_piecewise(laws)
+
+    def _setup_piecewise(self, laws):
+        """The elements whose laws are integrated exactly (:mod:`.piecewise`): those with a piecewise-affine
+        law whose exogenous coordinate is a trigonometric polynomial of degree <= H (no drift)."""
+        from .piecewise import ExactProjection
+
+        g = self._grid
+        pw = []
+        for e, law in enumerate(laws):
+            if law is None:
+                continue
+            parts = [g.sa[e] @ self.Pm, g.sda[e] @ self.Pm, g.sdb[e] @ self.Pm]
+            back = [p @ self.G for p in parts]
+            scale = max(1.0, *(float(np.max(np.abs(x))) for x in (g.sa[e], g.sda[e], g.sdb[e])))
+            if np.any(g.sb[e] != 0) or max(float(np.max(np.abs(b - x))) for b, x in
+                                             zip(back, (g.sa[e], g.sda[e], g.sdb[e]))) > 1e-12 * scale:
+                continue
+            pw.append((e, ExactProjection(law, self.H), *parts))
+        self._pw = pw
+        done = {p[0] for p in pw}
+        self._sampled = [e for e in range(len(self.s.elements)) if e not in done]
+        self._pw_jump = False
+
+    @property
+    def exact_elements(self) -> list:
+        """Indices of the elements whose laws are integrated exactly (no sampling)."""
+        return [p[0] for p in self._pw]
 
     def times(self, omega):
         return self.theta * self.nu / omega
@@ -117,8 +151,11 @@ class HBModel:
     def element_blocks(self, cs, cv, Om):
         """``T(cs) + Om T(cv) D^T`` (k, m, m) for sampled dF/ds, dF/ds' sums cs, cv (k, N): one FFT
         and one sparse map of the DFT sums (four entries per matrix entry, :func:`_block_maps`)."""
-        k = cs.shape[0]
-        F = self._dft(np.concatenate([cs, cv]))
+        return self.spectral_blocks(self._dft(np.concatenate([cs, cv])), cs.shape[0], Om)
+
+    def spectral_blocks(self, F, k, Om):
+        """:meth:`element_blocks` from the DFT sums ``F`` (2k, 2H+1) of dF/ds (first k rows) and dF/ds'
+        (the sums over the N samples, or N times the exact Fourier coefficients)."""
         U = np.empty((k, 4 * self.m))
         m = self.m
         U[:, :m], U[:, m:2 * m] = F.real[:k], -F.imag[:k]
@@ -144,6 +181,8 @@ class HBModel:
         for part, scale in self._forcing_terms:
             R -= (fa, fb, fc, fd)[part] * (1.0, 1.0 / omega, omega, omega * omega)[part]
         nel = len(s.elements)
+        if nel and self._pw:
+            return self._evaluate_piecewise(Q, QD, QDD, R, omega, jac, dw)
         if nel:
             g = self._grid
             A = s.Gf @ Q
@@ -179,6 +218,110 @@ class HBModel:
             J = JK + Om * JC + (Om * Om) * JM
             if nel and self._pair_src.size:
                 B = self.element_blocks(self._pair_weights @ dFs, self._pair_weights @ dFv, Om)
+                if n == 1:
+                    J -= B[0]
+                else:
+                    J = J.reshape(n, m, n, m)
+                    J[self._pair_rows, :, self._pair_cols, :] -= B[self._pair_src]
+                    J = J.reshape(n * m, n * m)
+        return R.ravel(), J, Rw
+
+    def _element_coordinates(self, A, omega):
+        """Samples (S, Sd, d Sd/d omega at fixed coefficients) of the element coordinates on the grid."""
+        g = self._grid
+        Om = omega / self.nu
+        nel = A.shape[0]
+        SG = np.concatenate([A, A @ self.D]) @ self.G
+        S, ADG = SG[:nel], SG[nel:]
+        if self._exo[0]:
+            S = S + g.sa
+        if self._exo[1]:
+            S = S + g.sb / omega
+        Sd = Om * ADG
+        if self._exo[2]:
+            Sd = Sd + g.sda
+        if self._exo[3]:
+            Sd = Sd + omega * g.sdb
+        return S, Sd, ADG
+
+    def element_projection(self, X, omega, jac=True, dw=False, J=None):
+        """The Galerkin projection (nel, 2J+1) of every element force on harmonics 0..J (default H; the
+        sampled elements need 2J < N), and with ``jac`` the spectra (N-scaled DFT sums (nel, 2H+1)) of
+        dF/ds and dF/ds' and the moving-boundary matrices {element: (m, m)}; with ``dw`` the projection of
+        dF/domega at fixed coefficients (nel, m)."""
+        s = self.s
+        n, m, nu = s.n, self.m, self.nu
+        Q = np.asarray(X, float).reshape(n, m)
+        Om = omega / nu
+        A = s.Gf @ Q
+        S, Sd, ADG = self._element_coordinates(A, omega)
+        nel = A.shape[0]
+        Jh = self.H if J is None else int(J)
+        Fp = np.zeros((nel, 2 * Jh + 1))
+        Fw = np.zeros((nel, m)) if dw else None
+        spec_s = spec_v = None
+        jumps = {}
+        if jac:
+            spec_s = np.zeros((nel, m), complex)
+            spec_v = np.zeros((nel, m), complex)
+        smp = self._sampled
+        if smp:
+            F = np.empty((len(smp), self.N))
+            dFs, dFv = np.empty_like(F), np.empty_like(F)
+            for r, e in enumerate(smp):
+                F[r], dFs[r], dFv[r] = s.elements[e].smooth_force(S[e], Sd[e], s.eps)
+            if Jh == self.H:
+                Fp[smp] = F @ self.Pm
+            else:
+                Fp[smp] = _real_series(np.fft.rfft(F, axis=-1)[:, :Jh + 1], self.N)
+            if dw:
+                dSd = ADG[smp] / nu + self._grid.sdb[smp] if self._exo[3] else ADG[smp] / nu
+                dS = dFv * dSd
+                if self._exo[1]:
+                    dS = dS - dFs * self._grid.sb[smp] / omega ** 2
+                Fw[smp] = dS @ self.Pm
+            if jac:
+                sp = self._dft(np.concatenate([dFs, dFv]))
+                spec_s[smp], spec_v[smp] = sp[:len(smp)], sp[len(smp):]
+        for e, proj, sa, sda, sdb in self._pw:
+            Cs = A[e] + sa
+            AD = A[e] @ self.D
+            Cv = Om * AD + sda + omega * sdb
+            out = proj.evaluate(Cs, Cv, S[e], J=Jh, Cw=(AD / nu + sdb) if dw else None, jac=jac)
+            Fp[e] = out["F"]
+            if dw:
+                Fw[e] = out["Fw"]
+            if jac:
+                spec_s[e], spec_v[e] = self.N * out["spec_s"], self.N * out["spec_v"]
+                if out["jump"] is not None:
+                    jumps[e] = out["jump"]
+        return Fp, spec_s, spec_v, jumps, Fw
+
+    def _evaluate_piecewise(self, Q, QD, QDD, R, omega, jac, dw):
+        """:meth:`evaluate_residual` with exactly integrated elements (R: the linear part and forcing)."""
+        s = self.s
+        n, m, nu = s.n, self.m, self.nu
+        Om = omega / nu
+        Fp, spec_s, spec_v, jumps, Fw = self.element_projection(Q, omega, jac=jac, dw=dw)
+        R -= s.Gf.T @ Fp
+        Rw = None
+        if dw:
+            Rw = (s.C @ QD + (2 * Om) * (s.M @ QDD)) / nu
+            fa, fb, fc, fd = self._fP
+            for part, _ in self._forcing_terms:
+                if part:
+                    Rw -= (None, -fb / omega ** 2, fc, (2 * omega) * fd)[part]
+            Rw -= s.Gf.T @ Fw
+            Rw = Rw.ravel()
+        J = None
+        if jac:
+            JK, JC, JM = self._linear_jacobians()
+            J = JK + Om * JC + (Om * Om) * JM
+            if self._pair_src.size:
+                P = self._pair_weights
+                B = self.spectral_blocks(np.concatenate([P @ spec_s, P @ spec_v]), P.shape[0], Om)
+                for e, Bj in jumps.items():
+                    B += P[:, e][:, None, None] * Bj[None]
                 if n == 1:
                     J -= B[0]
                 else:
@@ -270,6 +413,25 @@ class HBModel:
         return th / Om, Q @ G, Om * (Q @ DG)
 
 
+def default_samples(H: int, smoothness: int) -> int:
+    """Default AFT samples per period for H harmonics and the roughest sampled law (0: discontinuous,
+    1: kinked, 2: smooth)."""
+    if smoothness == 0:
+        return max(1024, 16 * H)
+    if smoothness == 1:
+        return max(256, 16 * H)
+    return max(64, 8 * H + 4)
+
+
+def _real_series(F, N):
+    """Real series [c0, a1, b1, ..] (the Galerkin projection) from the DFT sums F (k, J+1) of N samples."""
+    out = np.empty(F.shape[:-1] + (2 * F.shape[-1] - 1,))
+    out[..., 0] = F[..., 0].real / N
+    out[..., 1::2] = 2.0 * F[..., 1:].real / N
+    out[..., 2::2] = -2.0 * F[..., 1:].imag / N
+    return out
+
+
 def _basis(H: int, th) -> np.ndarray:
     """[1, cos th, sin th, ..., cos H th, sin H th] at the phases th: (2H+1, len(th))."""
     G = np.ones((2 * H + 1, np.size(th)))
@@ -349,13 +511,22 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     G, DG, grid = mid
     Minv = np.linalg.inv(s.M)
     d = 2 * n
-    P = max(1, int(chunk_entries // (M * d * d)))
+    split = bool(model._pw)        # exactly integrated laws: intervals split at their crossings
+    P = max(1, int(chunk_entries // ((M + (8 if split else 0)) * d * d)))
     out = np.empty((Xs.shape[0], d), complex)
     for c0 in range(0, Xs.shape[0], P):
         Q, w = Xs[c0:c0 + P], omegas[c0:c0 + P]
         Om = w / model.nu
         h = 2 * np.pi * model.nu / w / M
-        if nel:
+        Mp = M
+        if split:
+            # the piecewise-affine laws' coefficients are constant between crossings: the uniform
+            # intervals are cut at the crossings (zero-length padding intervals are identities), so
+            # the midpoint exponentials of such a law are exact
+            S, Sd, hh = _split_coordinates(model, Q, w, M)
+            Mp = hh.shape[1]
+            _, dFs, dFv = s.element_laws(np.moveaxis(S, 1, 0), np.moveaxis(Sd, 1, 0))
+        elif nel:
             A = s.Gf @ Q                                          # (P, nel, m)
             S = A @ G + grid.sa + grid.sb / w[:, None, None]
             Sd = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
@@ -363,9 +534,12 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
         if d == 2:        # one DOF: the 2x2 blocks as component arrays (P, M)
             k = s.K[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFs, 1) if nel else 0.0)
             c = s.C[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFv, 1) if nel else 0.0)
-            shape = (Q.shape[0], M)         # (k and c are scalars without elements)
-            E = _expm2_runs(h, np.broadcast_to(-Minv[0, 0] * k * h[:, None], shape),
-                            np.broadcast_to(-Minv[0, 0] * c * h[:, None], shape))
+            shape = (Q.shape[0], Mp)         # (k and c are scalars without elements)
+            if split:
+                E = _expm2_runs(hh, -Minv[0, 0] * k * hh, -Minv[0, 0] * c * hh)
+            else:
+                E = _expm2_runs(h, np.broadcast_to(-Minv[0, 0] * k * h[:, None], shape),
+                                np.broadcast_to(-Minv[0, 0] * c * h[:, None], shape))
             while E[0].shape[1] > 1:
                 if E[0].shape[1] % 2:
                     one = np.ones((Q.shape[0], 1))
@@ -378,7 +552,8 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
             continue
         # the interval matrices depend on (h, dF_e/ds, dF_e/ds') only: piecewise-linear laws (contact on/off)
         # and saturated friction (tanh' = 0 while slipping) repeat them exactly -- exponentiate each once
-        keys = np.concatenate([np.repeat(h, M)[:, None]] + ([dFs.reshape(nel, -1).T, dFv.reshape(nel, -1).T] if nel else []), axis=1)
+        hcol = hh.reshape(-1, 1) if split else np.repeat(h, M)[:, None]
+        keys = np.concatenate([hcol] + ([dFs.reshape(nel, -1).T, dFv.reshape(nel, -1).T] if nel else []), axis=1)
         first, inv = _unique_rows(keys)
         uk = keys[first]
         hu, fs, fv = uk[:, 0], uk[:, 1:1 + nel], uk[:, 1 + nel:]
@@ -389,13 +564,55 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
         Y[:, :n, n:] = np.eye(n) * hb3
         Y[:, n:, :n] = -(Minv @ Kq) * hb3
         Y[:, n:, n:] = -(Minv @ Cv) * hb3
-        E = expm_batch(Y)[inv.ravel()].reshape(Q.shape[0], M, d, d)
+        E = expm_batch(Y)[inv.ravel()].reshape(Q.shape[0], Mp, d, d)
         while E.shape[1] > 1:           # ordered product E[M-1] ... E[1] E[0]
             if E.shape[1] % 2:
                 E = np.concatenate([E, np.broadcast_to(np.eye(d), (E.shape[0], 1, d, d))], axis=1)
             E = E[:, 1::2] @ E[:, 0::2]
         out[c0:c0 + P] = np.linalg.eigvals(E[:, 0])
     return out
+
+
+def _split_coordinates(model: HBModel, Q, w, M: int):
+    """Element coordinates (S, Sd: (P, nel, M')) at the midpoints of the M uniform intervals of each
+    orbit cut at the crossings of its exactly integrated laws, and the intervals' durations hh (P, M')
+    (orbits with fewer crossings padded with zero-length intervals at the period's end)."""
+    from .piecewise import crossings
+
+    s = model.s
+    P = Q.shape[0]
+    A = s.Gf @ Q                                              # (P, nel, m)
+    cuts = []
+    for p in range(P):
+        th = [crossings(A[p, e] + sa, (A[p, e] + sa) @ model.G, proj.law.breaks)[0]
+              for e, proj, sa, _, _ in model._pw]
+        cuts.append(np.concatenate(th) if th else np.zeros(0))
+    extra = max((c.size for c in cuts), default=0)
+    base = 2 * np.pi * np.arange(M + 1) / M
+    B = np.empty((P, M + 1 + extra))
+    for p, c in enumerate(cuts):
+        B[p] = np.sort(np.concatenate([base, c, np.full(extra - c.size, 2 * np.pi)]))
+    dth = np.diff(B, axis=1)
+    mid = 0.5 * (B[:, 1:] + B[:, :-1])
+    Mp = mid.shape[1]
+    H = model.H
+    kt = np.multiply.outer(mid, np.arange(1, H + 1))         # (P, M', H)
+    cs, sn = np.cos(kt), np.sin(kt)
+    k = np.arange(1, H + 1)
+    a, b = A[..., 1::2], A[..., 2::2]                           # (P, nel, H)
+    S = A[..., :1] + np.einsum("pmh,peh->pem", cs, a) + np.einsum("pmh,peh->pem", sn, b)
+    Sth = np.einsum("pmh,peh->pem", cs, k * b) - np.einsum("pmh,peh->pem", sn, k * a)
+    g = s.grid_parts(mid.ravel(), model.nu)
+    nel = A.shape[1]
+    Om = (w / model.nu)[:, None, None]
+
+    def exo(x):
+        return x.reshape(nel, P, Mp).transpose(1, 0, 2)
+
+    S = S + exo(g.sa) + exo(g.sb) / w[:, None, None]
+    Sd = Om * Sth + exo(g.sda) + w[:, None, None] * exo(g.sdb)
+    hh = dth * (model.nu / w)[:, None]
+    return S, Sd, hh
 
 
 def _unique_rows(keys):
@@ -441,7 +658,7 @@ def _expm2_parts(a, b, c, d):
 
 
 def _expm2_runs(h, c, d):
-    """exp of the one-DOF interval matrices [[0, h], [c, d]] (h (P,), c and d (P, M)) as component
+    """exp of the one-DOF interval matrices [[0, h], [c, d]] (h (P,) or (P, M), c and d (P, M)) as component
     arrays (P, M), each run of equal consecutive intervals exponentiated once: saturated friction
     (tanh' = 0 while slipping) and a contact on or off repeat the matrices exactly (seed 002's
     benchmark branch: 393 runs in 294 912 intervals).  Runs are found on the bit patterns, so the
@@ -449,14 +666,19 @@ def _expm2_runs(h, c, d):
     more runs than half the intervals (smooth laws) every interval is exponentiated directly."""
     P, M = c.shape
     new = np.ones((P, M), bool)
+    c, d = np.ascontiguousarray(c), np.ascontiguousarray(d)
     cb, db = c.view(np.uint64), d.view(np.uint64)
     new[:, 1:] = (cb[:, 1:] != cb[:, :-1]) | (db[:, 1:] != db[:, :-1])
+    if np.ndim(h) == 2:
+        h = np.ascontiguousarray(h)
+        hb = h.view(np.uint64)
+        new[:, 1:] |= hb[:, 1:] != hb[:, :-1]
     first = np.flatnonzero(new.ravel())
     if first.size > P * M // 2:
-        hh = np.broadcast_to(h[:, None], (P, M))
+        hh = np.broadcast_to(h if np.ndim(h) == 2 else h[:, None], (P, M))
         return _expm2_parts(np.zeros_like(hh), hh, c, d)
     length = np.diff(first, append=P * M)
-    hr = np.repeat(h, M)[first]
+    hr = (h.ravel() if np.ndim(h) == 2 else np.repeat(h, M))[first]
     parts = _expm2_parts(np.zeros_like(hr), hr, c.ravel()[first], d.ravel()[first])
     return tuple(np.repeat(p, length).reshape(P, M) for p in parts)
 
