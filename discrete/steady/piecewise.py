@@ -94,50 +94,81 @@ def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
     """Roots of ``s(theta) = b`` over one period for every break b of the trigonometric polynomial with
     real coefficients C, sampled at ``samples`` (N equidistant phases from 0).  Returns (theta in
     [0, 2 pi) sorted, break index, s_theta at the root) -- bracketed by the sample signs and by the
-    samples' local extrema (module docstring), polished by safeguarded Newton to ``tol`` rad."""
+    samples' local extrema (module docstring), polished by Newton (safeguarded by the bracket when plain
+    Newton does not settle in three steps)."""
     C = np.asarray(C, float)
     S = np.asarray(samples, float)
     B = np.asarray(breaks, float)
     N = S.size
     h = TWO_PI / N
-    nxt = np.concatenate([S[1:], S[:1]])
-    above = S[:, None] > B[None, :]                     # (N, breaks)
-    ab_next = nxt[:, None] > B[None, :]
-    n, bi = np.nonzero(above != ab_next)
-    lo, hi = n * h, (n + 1) * h
-    flo, fhi = S[n] - B[bi], nxt[n] - B[bi]
+    Sc = np.concatenate([S, S[:1]])                      # closed: sample N is sample 0
+    d = Sc[:, None] - B                                  # (N + 1, breaks)
+    above = d > 0
+    n, bi = np.nonzero(above[:-1] != above[1:])
+    lo = n * h
+    flo, fhi = d[n, bi], d[n + 1, bi]
+    hi = lo + h
+    H = (C.size - 1) // 2
+    k = np.arange(1, H + 1)
+    a, b = C[1::2], C[2::2]
     # a contact shorter than a sample interval: a local extremum of the samples within the reach of the
     # curvature bound (|s - s_n| <= max|s''| h^2 / 2 near an extremum) of a break it does not cross
-    k = np.arange(1, (C.size - 1) // 2 + 1)
-    reach = 0.5 * h * h * float(np.sum(k * k * (np.abs(C[1::2]) + np.abs(C[2::2]))))
-    near = np.abs(S[:, None] - B[None, :]) <= reach
-    if np.any(near):
-        prev = np.concatenate([S[-1:], S[:-1]])
-        ab_prev = prev[:, None] > B[None, :]
-        ext = ((S >= prev) & (S >= nxt))[:, None] & ~above & ~ab_next & ~ab_prev \
-            | ((S <= prev) & (S <= nxt))[:, None] & above & ab_next & ab_prev
-        ne, be = np.nonzero(ext & near)
-        if ne.size:
-            th = ne * h
-            for _ in range(3):                     # Newton on s_theta = 0 from the extreme sample
-                d1, d2 = trig_eval(C, th, 1), trig_eval(C, th, 2)
-                ok = d2 != 0
-                th = np.where(ok, th - np.where(ok, d1 / np.where(ok, d2, 1.0), 0.0), th)
-                th = np.clip(th, (ne - 1) * h, (ne + 1) * h)
-            v = trig_eval(C, th) - B[be]
-            cross = (v > 0) != above[ne, be]
-            if np.any(cross):
-                e, t, b2, v2 = ne[cross], th[cross], be[cross], v[cross]
-                lo = np.concatenate([lo, (e - 1) * h, t])
-                hi = np.concatenate([hi, t, (e + 1) * h])
-                flo = np.concatenate([flo, prev[e] - B[b2], v2])
-                fhi = np.concatenate([fhi, v2, nxt[e] - B[b2]])
-                bi = np.concatenate([bi, b2, b2])
+    reach = 0.5 * h * h * float(k * k @ (np.abs(a) + np.abs(b)))
+    if np.any(np.abs(d) <= reach):
+        lo, hi, flo, fhi, bi = _grazing_brackets(C, S, B, h, reach, lo, hi, flo, fhi, bi)
     if lo.size == 0:
         return np.zeros(0), np.zeros(0, int), np.zeros(0)
     bv = B[bi]
-    den = np.where(fhi != flo, fhi - flo, 1.0)
-    th = np.clip(lo - flo * (hi - lo) / den, lo, hi)
+    den = fhi - flo
+    th = lo - flo * (hi - lo) / np.where(den != 0, den, 1.0)
+    ka, kb = k * a, k * b
+    c0 = C[0] - bv
+    for it in range(3):                                  # plain Newton from the secant of the bracket
+        kt = np.multiply.outer(th, k)
+        cs, sn = np.cos(kt), np.sin(kt)
+        d1 = cs @ kb - sn @ ka
+        step = (c0 + cs @ a + sn @ b) / d1
+        th = th - step
+        big = np.max(np.abs(step))
+        if it and big <= 1e-9:             # quadratic convergence: the error is now ~ step^2
+            break
+    if not (big <= 1e-9 and np.all(th >= lo - 1e-12) and np.all(th <= hi + 1e-12)):
+        th = _bracketed_newton(C, bv, lo, hi, flo, tol, maxit)
+        _, d1 = _value_slope(C, th)
+    th = np.mod(th, TWO_PI)
+    order = np.argsort(th)
+    return th[order], bi[order], d1[order]
+
+
+def _grazing_brackets(C, S, B, h, reach, lo, hi, flo, fhi, bi):
+    """Add the brackets of a contact between two samples: a local extremum of the samples, on one side of
+    a break with both neighbours, whose true extremum (Newton on s_theta = 0) crosses it."""
+    prev, nxt = np.roll(S, 1), np.roll(S, -1)
+    ext = ((S >= prev) & (S >= nxt)) | ((S <= prev) & (S <= nxt))
+    side = S[:, None] > B
+    same = (side == (prev[:, None] > B)) & (side == (nxt[:, None] > B))
+    ne, be = np.nonzero(ext[:, None] & same & (np.abs(S[:, None] - B) <= reach))
+    if ne.size == 0:
+        return lo, hi, flo, fhi, bi
+    th = ne * h
+    for _ in range(3):                     # Newton on s_theta = 0 from the extreme sample
+        d1, d2 = trig_eval(C, th, 1), trig_eval(C, th, 2)
+        ok = d2 != 0
+        th = np.clip(np.where(ok, th - d1 / np.where(ok, d2, 1.0), th), (ne - 1) * h, (ne + 1) * h)
+    v = trig_eval(C, th) - B[be]
+    cross = (v > 0) != side[ne, be]
+    if not np.any(cross):
+        return lo, hi, flo, fhi, bi
+    e, t, b2, v2 = ne[cross], th[cross], be[cross], v[cross]
+    return (np.concatenate([lo, (e - 1) * h, t]), np.concatenate([hi, t, (e + 1) * h]),
+            np.concatenate([flo, prev[e] - B[b2], v2]), np.concatenate([fhi, v2, nxt[e] - B[b2]]),
+            np.concatenate([bi, b2, b2]))
+
+
+def _bracketed_newton(C, bv, lo, hi, flo, tol, maxit):
+    """Newton on s(theta) = bv kept inside the brackets [lo, hi] (bisection when it leaves them)."""
+    den = np.ones_like(lo)
+    th = 0.5 * (lo + hi)
     for _ in range(maxit):
         f, d1 = _value_slope(C, th)
         f -= bv
@@ -146,7 +177,7 @@ def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
         flo = np.where(same, f, flo)
         hi = np.where(same, hi, th)
         ok = d1 != 0
-        tn = th - f / np.where(ok, d1, 1.0)
+        tn = th - f / np.where(ok, d1, den)
         bad = ~ok | ~(tn >= lo) | ~(tn <= hi)
         if np.any(bad):
             tn = np.where(bad, 0.5 * (lo + hi), tn)
@@ -154,9 +185,7 @@ def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
         th = tn
         if step <= tol:
             break
-    th = np.mod(th, TWO_PI)
-    order = np.argsort(th)
-    return th[order], bi[order], d1[order]
+    return th
 
 
 def pieces(C, samples, law: PiecewiseAffineLaw):
@@ -166,12 +195,25 @@ def pieces(C, samples, law: PiecewiseAffineLaw):
     th, bi, d1 = crossings(C, samples, law.breaks)
     if th.size == 0:
         return th, bi, d1, np.array([int(law.piece(np.asarray(samples)[0]))])
-    after = np.where(d1 > 0, bi + 1, bi)
-    before = np.where(d1 > 0, bi, bi + 1)
-    if not np.array_equal(after, np.roll(before, -1)):     # inconsistent order: read the piece at midpoints
+    up = d1 > 0
+    after = bi + up
+    before = bi + ~up
+    if after[-1] != before[0] or np.any(after[:-1] != before[1:]):   # inconsistent: read the piece at midpoints
         mid = 0.5 * (th + np.append(th[1:], th[0] + TWO_PI))
         after = law.piece(trig_eval(C, mid))
     return th, bi, d1, after
+
+
+def interval_spectra(th, J: int):
+    """chi[c, j] = 1/(2 pi) int_{theta_c}^{theta_{c+1}} e^{-i j theta} d theta, j = 0..J, of the intervals
+    between consecutive crossings th (sorted; the last interval wraps around)."""
+    j = np.arange(1, J + 1)
+    E = np.exp(np.multiply.outer(np.append(th, th[0]), -1j * j))   # (nc + 1, J): the first again at the end
+    chi = np.empty((th.size, J + 1), complex)
+    chi[:, 1:] = (E[1:] - E[:-1]) * (1j / (TWO_PI * j))
+    t2 = np.append(th, th[0] + TWO_PI)
+    chi[:, 0] = (t2[1:] - t2[:-1]) / TWO_PI
+    return chi
 
 
 def indicator_spectra(th, after, n_pieces: int, J: int):
@@ -180,14 +222,19 @@ def indicator_spectra(th, after, n_pieces: int, J: int):
     if th.size == 0:
         X[int(after[0]), 0] = 1.0
         return X
-    j = np.arange(1, J + 1)
-    E = np.exp(-1j * np.multiply.outer(th, j))                  # (nc, J)
-    Eb = np.roll(E, -1, axis=0)
-    length = np.append(np.diff(th), th[0] + TWO_PI - th[-1])
-    chi = (Eb - E) / (-TWO_PI * 1j * j)
-    np.add.at(X[:, 1:], after, chi)
-    np.add.at(X[:, 0], after, length / TWO_PI)
+    chi = interval_spectra(th, J)
+    for p in range(n_pieces):
+        X[p] = chi[after == p].sum(axis=0)
     return X
+
+
+def _continuous(a, b, breaks) -> bool:
+    """Whether a + b s is continuous across every break (no jump term in the Jacobian)."""
+    for i, x in enumerate(breaks):
+        left, right = a[i] + b[i] * x, a[i + 1] + b[i + 1] * x
+        if abs(left - right) > 1e-14 * max(abs(left), abs(right), 1e-300) and left != right:
+            return False
+    return True
 
 
 class ExactProjection:
@@ -201,6 +248,10 @@ class ExactProjection:
         self.c = np.asarray(law.c, float)
         self.P = self.a.size
         self._idx = {}
+        self._to_c = to_complex(np.eye(2 * H + 1)).T            # complex coefficients c_l = _to_c @ C
+        self._has_c = bool(np.any(self.c != 0))
+        # a law that jumps across a break (a dashpot switched on at contact, or a discontinuous force)
+        self._jumps = self._has_c or not _continuous(self.a, self.b, np.asarray(law.breaks, float))
 
     def _toeplitz_index(self, J):
         """index into X_full (d = -H .. J + H) of X(j - l), j = 0..J, l = -H..H."""
@@ -216,28 +267,40 @@ class ExactProjection:
         """Projection of F on harmonics 0..J (default H) as a real series, and with ``jac`` the exact
         spectra (complex, j = 0..2H) of dF/ds and dF/ds' and the moving-boundary matrix (or None);
         ``Cw``: the real series of ds'/domega -> also dF/domega projected on 0..H.
-        Cs, Cv: real series (2H+1) of s and s' (in theta)."""
+        Cs, Cv: real series (2H+1) of s and s' (in theta).
+
+        With the spectra of the piecewise-constant coefficients ``A = sum_p a_p X_p``, ``B = sum_p b_p X_p``
+        (= the spectrum of dF/ds) and ``G = sum_p c_p X_p`` (of dF/ds'), ``F_j = A_j + sum_l B_{j-l} s_l +
+        G_{j-l} v_l``: two Toeplitz products, whatever the number of pieces."""
         H = self.H
         J = H if J is None else int(J)
         th, bi, d1, after = pieces(Cs, samples, self.law)
         Jx = max(J + H, 2 * H)
-        X = indicator_spectra(th, after, self.P, Jx)              # (P, Jx + 1), j >= 0
-        Xf = np.concatenate([np.conj(X[:, H:0:-1]), X], axis=1)    # d = -H .. Jx
-        cs, cv = to_complex(Cs), to_complex(Cv)
-        T = Xf[:, self._toeplitz_index(J)]                         # (P, J+1, 2H+1)
-        u = self.b[:, None] * cs[None, :] + self.c[:, None] * cv[None, :]
-        Fc = self.a @ X[:, :J + 1] + np.einsum("pjl,pl->j", T, u)
+        if th.size:
+            ABG = np.stack([self.a[after], self.b[after], self.c[after]]) @ interval_spectra(th, Jx)   # (3, Jx+1)
+        else:
+            p = int(after[0])
+            ABG = np.zeros((3, Jx + 1), complex)
+            ABG[:, 0] = self.a[p], self.b[p], self.c[p]
+        full = np.concatenate([np.conj(ABG[:, H:0:-1]), ABG], axis=1)    # d = -H .. Jx
+        idx = self._toeplitz_index(J)
+        Fc = ABG[0, :J + 1] + full[1][idx] @ (self._to_c @ Cs)
+        if self._has_c:
+            Gt = full[2][idx]
+            Fc += Gt @ (self._to_c @ Cv)
         out = {"F": to_real(Fc)}
         if Cw is not None:
-            cw = to_complex(Cw)
-            Tw = T[:, :H + 1] if J >= H else Xf[:, self._toeplitz_index(H)]
-            out["Fw"] = to_real(np.einsum("pjl,pl->j", Tw, self.c[:, None] * cw[None, :]))
+            if self._has_c:
+                Gw = Gt[:H + 1] if J >= H else full[2][self._toeplitz_index(H)]
+                out["Fw"] = to_real(Gw @ (self._to_c @ Cw))
+            else:
+                out["Fw"] = np.zeros(2 * H + 1)
         if jac:
-            out["spec_s"] = self.b @ X[:, :2 * H + 1]
-            out["spec_v"] = self.c @ X[:, :2 * H + 1]
+            out["spec_s"] = ABG[1, :2 * H + 1]
+            out["spec_v"] = ABG[2, :2 * H + 1]
             out["jump"] = None
-            if th.size:
-                before = np.roll(after, 1)
+            if th.size and self._jumps:
+                before = np.append(after[-1:], after[:-1])
                 s_c = np.asarray(self.law.breaks, float)[bi]
                 v_c = trig_eval(Cv, th)
                 dF = (self.a[before] - self.a[after]) + (self.b[before] - self.b[after]) * s_c \

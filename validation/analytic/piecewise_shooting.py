@@ -288,3 +288,44 @@ def continue_branch(osc, A0, phi0, w0, w_stop, nu=1, ds=0.01, ds_max=0.05, ds_mi
             h = min(1.5 * h, ds_max)
     U = np.array([p[0] for p in pts])
     return U[:, 0], U[:, 1], U[:, 2], np.array([p[1] for p in pts])
+
+
+def fixed_point(osc, y0, w, nu=1, symmetric=False, tol=1e-13, maxit=60):
+    """The orbit at the fixed frequency w through y0's neighbourhood: Newton on P(y) = y (``symmetric``:
+    on the half-period map -P_{T/2}(y) = y) with the exact transition matrix.  Returns (y, Phi, Phi_half):
+    Phi the full-period monodromy, Phi_half the half-period one (None unless symmetric)."""
+    y = np.array(y0, float)
+    T = nu * 2 * np.pi / w
+    for _ in range(maxit):
+        if symmetric:
+            P, Ph, _ = osc.flow(y, w, 0.0, 0.5 * T)
+            r, J = -P - y, -Ph - np.eye(2)
+        else:
+            P, Phi, _ = osc.flow(y, w, 0.0, T)
+            r, J = P - y, Phi - np.eye(2)
+        dy = np.linalg.solve(J, -r)
+        y = y + dy
+        if np.max(np.abs(dy)) <= tol * max(np.max(np.abs(y)), 1e-300):
+            break
+    else:
+        raise RuntimeError(f"no periodic orbit at w = {w}")
+    if symmetric:
+        _, Ph, _ = osc.flow(y, w, 0.0, 0.5 * T)
+        return y, Ph @ Ph, Ph          # (-Ph)^2 = Ph^2 for the full period
+    _, Phi, _ = osc.flow(y, w, 0.0, T)
+    return y, Phi, None
+
+
+def locate_in_omega(osc, test, wa, wb, y0, nu=1, symmetric=False):
+    """The frequency in [wa, wb] where ``test(Phi, Phi_half)`` changes sign along orbits solved at fixed
+    frequency (a branch without a fold in between), by Brent's method; returns (w, y, multipliers)."""
+    state = {"y": np.array(y0, float)}
+
+    def f(w):
+        y, Phi, Ph = fixed_point(osc, state["y"], w, nu, symmetric)
+        state["y"] = y
+        return test(Phi, Ph)
+
+    w = brentq(f, wa, wb, xtol=1e-13 * wb, rtol=1e-15)
+    y, Phi, _ = fixed_point(osc, state["y"], w, nu, symmetric)
+    return w, y, np.linalg.eigvals(Phi)

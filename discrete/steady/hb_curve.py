@@ -1,0 +1,533 @@
+"""The harmonic-balance amplitude-frequency curve, with its error estimate and its bifurcations.
+
+Steps (docs/steady.md, "Truncation control" and "Bifurcations"):
+
+1. pseudo-arc-length continuation of the HB equations (:func:`~.continuation.arclength`, the tangent from
+   the corrector's last Jacobian); with ``adaptive`` the truncation estimate (:mod:`.truncation`) is
+   evaluated at every accepted point and, where it exceeds ``truncation_tol``, the harmonics are raised
+   (H -> max(H + 2, H (e / tol)^(1/3)), at most ``max_harmonics``: the estimate of a kinked law decays
+   about like H^-3), the point is carried over (zero new harmonics, corrected on the plane orthogonal to
+   the tangent, regular at folds) and the branch goes on with the new model (one *segment* per H);
+2. per point: Floquet multipliers (batched), the response measure (exact, :mod:`.measures`), the
+   truncation estimate;
+3. folds located by Newton on the minimally extended system, then checked at H' = H + max(2, H/3): the
+   fold re-located with H' harmonics gives its frequency change (the fold's estimate); a fold that does
+   not persist is dropped, and a jump interval narrower than its folds' estimates is not reported;
+4. bifurcations classified from the test functions (:mod:`.bifurcation`) and located on the branch;
+5. with ``switch_branches``: the period-doubled branch from each period doubling (the orbit written with
+   period 2T, H -> 2H) and the other branch at each branch point are continued over the range.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import SolverError
+from . import bifurcation as bif
+from . import measures
+from .continuation import arclength, correct_on_plane, locate_fold, refine_fold
+from .hb import HBModel, floquet_hb, floquet_hb_batch
+from .truncation import estimates as truncation_estimates
+from .truncation import response_direction
+
+
+class Models:
+    """HB models of one steady model by (harmonics, subharmonic order), built once."""
+
+    def __init__(self, sm):
+        self.sm = sm
+        self._m = {}
+
+    def get(self, H: int, nu: int | None = None) -> HBModel:
+        cfg = self.sm.cfg
+        nu = cfg.subharmonic if nu is None else int(nu)
+        key = (int(H), nu)
+        hb = self._m.get(key)
+        if hb is None:
+            N = cfg.samples if cfg.samples and cfg.samples >= 4 * H + 2 else None
+            if N is not None and H != cfg.harmonics:
+                N = max(N, int(math.ceil(N * H / cfg.harmonics)))     # same sample density per harmonic
+            hb = self._m[key] = HBModel(self.sm.system, harmonics=H, nu=nu, samples=N, kinks=cfg.kinks)
+        return hb
+
+
+def residual_function(hb: HBModel):
+    def fun(x, w, need_w=True):
+        return hb.evaluate_residual(x, w, jac=True, dw=need_w)
+    return fun
+
+
+def max_harmonics(cfg) -> int:
+    return int(cfg.max_harmonics or 4 * cfg.harmonics)
+
+
+# ------------------------------------------------------------------ continuation in segments
+class Segment:
+    """A part of the branch computed with one HB model."""
+
+    def __init__(self, hb, branch, xs):
+        self.hb, self.br, self.xs = hb, branch, xs
+
+
+def continue_branch(sm, models, hb, X0, w0, w_stop, scale, progress=None, orientation=None,
+                    max_steps=None, stop_if=None, adaptive=None, bounds=None) -> list:
+    """Segments of the branch from the converged (X0, w0) towards w_stop (module docstring, step 1)."""
+    cfg = sm.cfg
+    lo, hi = bounds or (min(cfg.range), max(cfg.range))
+    wscale = abs(cfg.range[1] - cfg.range[0])
+    g = response_direction(sm)
+    adaptive = cfg.adaptive if adaptive is None else adaptive
+    Hmax = max_harmonics(cfg)
+    segs = []
+    x0, wa, orient = X0, w0, orientation
+    steps_left = cfg.max_steps if max_steps is None else max_steps
+    ds = cfg.ds
+    while True:
+        xs = np.full(np.size(x0), scale)
+        model = hb
+
+        why = []
+
+        def stop(x, w, model=model, why=why):
+            if stop_if is not None and stop_if(x, w):
+                why.append("caller")
+                return True
+            if adaptive and model.H < Hmax and truncation_estimates(model, [x], [w], g)[0] > cfg.truncation_tol:
+                why.append("truncation")
+                return True
+            return False
+
+        br = arclength(residual_function(hb), x0, wa, w_stop, xscale=xs, wscale=wscale, ds=ds, ds_max=cfg.ds_max,
+                       ds_min=cfg.ds_min, max_steps=steps_left, start_converged=True, w_bounds=(lo, hi),
+                       orientation=orient, reuse_jacobian=True,
+                       callback=_report(progress, skip_first=bool(segs)),
+                       stop_if=stop if (adaptive or stop_if is not None) else None)
+        segs.append(Segment(hb, br, xs))
+        steps_left -= max(len(br.w) - 1, 0)
+        if br.stop != "stop_if" or steps_left <= 0 or why[-1:] != ["truncation"]:
+            return segs
+        # raise the harmonics at the last point and go on
+        e = truncation_estimates(hb, [br.x[-1]], [br.w[-1]], g)[0]
+        Hn = min(Hmax, max(hb.H + 2, int(math.ceil(hb.H * (e / cfg.truncation_tol) ** (1 / 3)))))
+        hbn = models.get(Hn, hb.nu)
+        n = sm.system.n
+        t = br.tangents[-1]
+        tp = np.concatenate([bif.pad_harmonics(t[:-1], n, hb.H, Hn), t[-1:]])
+        tp /= np.linalg.norm(tp)
+        xp = bif.pad_harmonics(br.x[-1], n, hb.H, Hn)
+        try:
+            xc, wc, _ = correct_on_plane(residual_function(hbn), xp, br.w[-1], tp, np.full(xp.size, scale), wscale)
+        except (SolverError, np.linalg.LinAlgError) as exc:
+            br.reason += f"; raising the harmonics to {Hn} at omega = {br.w[-1]:.10g} failed: {exc}"
+            br.stop = "ds_min"
+            return segs
+        x0, wa, orient, hb = xc, wc, tp, hbn
+        ds = br.last_step if np.isfinite(br.last_step) else cfg.ds
+
+
+def _report(progress, skip_first=False):
+    if progress is None:
+        return None
+    seen = []
+
+    def cb(x, w):
+        if seen or not skip_first:
+            progress(w)
+        seen.append(w)
+
+    return cb
+
+
+# ------------------------------------------------------------------ response measures of HB orbits
+def measure_orbits(sm, hb: HBModel, Xs, omegas) -> np.ndarray:
+    """The [steady] response measure of HB orbits, exactly (:mod:`.measures`), divided by the scale."""
+    cfg = sm.cfg
+    s = sm.system
+    if not len(Xs):
+        return np.zeros(0)
+    Q = np.asarray(Xs, float).reshape(-1, s.n, hb.m)
+    w = np.asarray(omegas, float)
+    meas = cfg.measure
+    if sm.resp_el is None:
+        C = Q[:, sm.resp_dof]
+        if meas == "h1":
+            val = measures.series_h1(C, hb.nu)
+        else:
+            val = measures.from_extremes(meas, *measures.series_extremes(C))
+        return val / cfg.scale
+    e = sm.resp_el
+    el = s.elements[e]
+    A = s.Gf[e] @ Q                                               # (k, 2H+1)
+    k = A.shape[0]
+    Om = w / hb.nu
+
+    def force(theta):                                             # |F| of the element at phases (k, p)
+        th = np.asarray(theta, float)
+        p = th.shape[1]
+        g = s.grid_parts(th.ravel(), hb.nu)
+        S = measures.series_values(A, th) + g.sa[e].reshape(k, p) + g.sb[e].reshape(k, p) / w[:, None]
+        Sd = Om[:, None] * measures.series_values(A, th, 1) + g.sda[e].reshape(k, p) + w[:, None] * g.sdb[e].reshape(k, p)
+        return np.abs(el.smooth_force(S, Sd, s.eps)[0])
+
+    P = max(512, hb.N)
+    if meas == "h1":
+        P = max(4096, hb.N)
+        th = np.broadcast_to(2 * np.pi * np.arange(P) / P, (k, P))
+        val = measures.periodic_h1(force(th), w, hb.nu)
+    else:
+        val = measures.from_extremes(meas, *measures.golden_extremes(force, k, P))
+    return val / cfg.scale
+
+
+# ------------------------------------------------------------------ folds
+def fold_point(hb, br, i, xs, wscale):
+    """The fold between branch points i, i+1: Newton on the extended system from the point interpolated
+    in the tangent's frequency component; the bounded search of ``refine_fold`` if that fails."""
+    fun = residual_function(hb)
+    ta, tb = br.tangents[i], br.tangents[i + 1]
+    fr = ta[-1] / (ta[-1] - tb[-1]) if ta[-1] != tb[-1] else 0.5
+    x0 = br.x[i] + fr * (br.x[i + 1] - br.x[i])
+    w0 = br.w[i] + fr * (br.w[i + 1] - br.w[i])
+    t0 = ta + fr * (tb - ta)
+    try:
+        x, w, _ = locate_fold(fun, x0, w0, t0, xs, wscale)
+        if min(br.w[i], br.w[i + 1]) - abs(br.w[i + 1] - br.w[i]) <= w <= max(br.w[i], br.w[i + 1]) + abs(br.w[i + 1] - br.w[i]):
+            return x, w, t0, True
+    except (SolverError, np.linalg.LinAlgError):
+        pass
+    try:
+        x, w = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs, ta[-1] > 0)
+        return x, w, t0, True
+    except (SolverError, np.linalg.LinAlgError):
+        return x0, w0, t0, False
+
+
+def check_fold(sm, models, hb, x, w, t, scale, wscale):
+    """The fold re-located with H' = H + max(2, H/3) harmonics from the padded fold (Newton on the
+    extended system): (omega', H') or (None, H') if it does not converge there."""
+    n = sm.system.n
+    Hc = hb.H + max(2, hb.H // 3)
+    hc = models.get(Hc, hb.nu)
+    xp = bif.pad_harmonics(x, n, hb.H, Hc)
+    tp = np.concatenate([bif.pad_harmonics(t[:-1], n, hb.H, Hc), t[-1:]])
+    try:
+        xc, wc, _ = locate_fold(residual_function(hc), xp, w, tp, np.full(xp.size, scale), wscale)
+    except (SolverError, np.linalg.LinAlgError):
+        return None, Hc, None
+    return wc, Hc, xc
+
+
+# ------------------------------------------------------------------ the whole curve
+class CurveData:
+    """Everything the HB curve computes, point by point (concatenated over segments) and per event."""
+
+    def __init__(self):
+        self.omega, self.states, self.models, self.response = [], [], [], []
+        self.mus, self.estimate, self.tangents, self.bp_sign = [], [], [], []
+        self.folds, self.bifurcations, self.warnings, self.dropped = [], [], [], []
+        self.index = []            # (segment, local index) per point
+
+
+def analyse(sm, models, segs, scale, stability=True, locate=True) -> CurveData:
+    """Steps 2-4 of the module docstring over the segments of one branch."""
+    cfg = sm.cfg
+    wscale = abs(cfg.range[1] - cfg.range[0])
+    g = response_direction(sm)
+    cd = CurveData()
+    for k, seg in enumerate(segs):
+        br, hb = seg.br, seg.hb
+        last = len(br.x) - (1 if k < len(segs) - 1 else 0)     # a raised segment's last point is redone
+        xs_, ws_ = br.x[:last], br.w[:last]
+        mus = floquet_hb_batch(hb, xs_, ws_) if stability and xs_ else [None] * len(xs_)
+        resp = measure_orbits(sm, hb, xs_, ws_)
+        est = truncation_estimates(hb, xs_, ws_, g) if len(xs_) else np.zeros(0)
+        for j in range(len(xs_)):
+            cd.omega.append(float(ws_[j]))
+            cd.states.append(xs_[j])
+            cd.models.append(hb)
+            cd.response.append(float(resp[j]))
+            cd.mus.append(None if mus[j] is None else np.asarray(mus[j]))
+            cd.estimate.append(float(est[j]))
+            cd.tangents.append(br.tangents[j])
+            cd.bp_sign.append(br.bp_sign[j] if br.bp_sign[j] != 0 else None)
+            cd.index.append((k, j))
+        # folds of this segment (and one between the previous segment's last tangent and this one's first)
+        cand = [i for i, _, _ in br.folds]
+        for i in cand:
+            _add_fold(sm, models, cd, seg, i, scale, wscale, stability)
+    _fold_jumps(cd, cfg)
+    if locate:
+        _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability)
+    return cd
+
+
+def _add_fold(sm, models, cd, seg, i, scale, wscale, stability):
+    cfg = sm.cfg
+    hb, br = seg.hb, seg.br
+    x, w, t, ok = fold_point(hb, br, i, seg.xs, wscale)
+    H = hb.H
+    wc, Hc, xc = check_fold(sm, models, hb, x, w, t, scale, wscale) if ok else (None, None, None)
+    # adaptive: raise the fold's harmonics until its change is within the tolerance
+    Hmax = max_harmonics(cfg)
+    n = sm.system.n
+    while cfg.adaptive and wc is not None and abs(wc - w) > cfg.truncation_tol * abs(w) and Hc <= Hmax:
+        t = np.concatenate([bif.pad_harmonics(t[:-1], n, H, Hc), t[-1:]])
+        hb = models.get(Hc, hb.nu)
+        x, w, H = xc, wc, Hc
+        wc, Hc, xc = check_fold(sm, models, hb, x, w, t, scale, wscale)
+    resp = float(measure_orbits(sm, hb, [x], [w])[0])
+    est = abs(wc - w) / abs(w) if wc is not None else float("nan")
+    fold = {"omega": float(w), "response": resp, "harmonics": int(H), "located": bool(ok)}
+    if wc is not None:
+        fold.update({"omega_check": float(wc), "check_harmonics": int(Hc), "estimate": float(est)})
+    else:
+        fold.update({"omega_check": None, "check_harmonics": int(Hc) if Hc else None, "estimate": None})
+    if ok and wc is None:
+        cd.dropped.append(fold)
+        cd.warnings.append(f"the fold near omega = {w:.8g} rad/s found with H = {H} did not persist with "
+                           f"H = {Hc} harmonics: not reported (a truncation artefact)")
+        return
+    if wc is not None and est > cfg.truncation_tol:
+        cd.warnings.append(f"the fold at omega = {w:.8g} rad/s moves by {abs(wc - w):.3g} rad/s ({est:.2g} relative) "
+                           f"from H = {H} to {Hc} harmonics: above truncation_tol = {cfg.truncation_tol:g}"
+                           + ("" if cfg.adaptive else " (set adaptive = true or raise harmonics)"))
+    mu = None
+    if stability:
+        try:
+            mu = bif.critical(floquet_hb(hb, x, w), "fold")
+        except (SolverError, np.linalg.LinAlgError, ValueError):
+            mu = None
+    cd.folds.append(fold)
+    b = bif.Bifurcation("fold", float(w), resp, mu, "tangent d omega / ds (extended Newton)", bool(ok), -1, x)
+    b.harmonics, b.check = int(H), (wc, Hc)
+    if wc is not None:
+        b.note = f"{wc:.8g} rad/s with {Hc} harmonics (change {est:.2g} relative)"
+    cd.bifurcations.append(b)
+
+
+def _fold_jumps(cd, cfg):
+    """Drop pairs of consecutive folds (in frequency) closer than their estimates (not resolved)."""
+    fs = sorted(cd.folds, key=lambda f: f["omega"])
+    keep = list(fs)
+    for a, b in zip(fs, fs[1:]):
+        ea = (a.get("estimate") or 0.0) * abs(a["omega"])
+        eb = (b.get("estimate") or 0.0) * abs(b["omega"])
+        if abs(b["omega"] - a["omega"]) < ea + eb and a in keep and b in keep:
+            keep.remove(a)
+            keep.remove(b)
+            cd.dropped += [a, b]
+            cd.warnings.append(f"folds at omega = {a['omega']:.8g} and {b['omega']:.8g} rad/s are closer than their "
+                               "truncation estimates: the jump between them is not resolved and not reported")
+    if len(keep) != len(cd.folds):
+        gone = [f["omega"] for f in cd.folds if f not in keep]
+        cd.folds = [f for f in cd.folds if f in keep]
+        cd.bifurcations = [b for b in cd.bifurcations if not (b.kind == "fold" and b.omega in gone)]
+
+
+def _psi(hb, kind, test, fun, xa, wa, d, xs, wscale):
+    """The test function of a bifurcation kind on the segment direction d (bifurcation.py)."""
+    if kind == "branch_point" and test.startswith("psi_BP"):
+        ref = bif.log_abs_det(fun, xa, wa, d, xs, wscale)
+        return lambda x, w: bif.bordered_det(fun, x, w, d, xs, wscale, ref)
+    f = {"branch_point": bif.psi_plus, "period_doubling": bif.psi_pd, "neimark_sacker": bif.psi_ns}[kind]
+    return lambda x, w: f(floquet_hb(hb, x, w))
+
+
+def locate_between(hb, kind, test, xa, wa, xb, wb, scale, wscale, ta=None, tb=None):
+    """(x, w, located) of the bifurcation ``kind`` between the branch points a and b of the model hb
+    (ta, tb: their scaled tangents, for the predictor)."""
+    fun = residual_function(hb)
+    xs = np.full(np.size(xa), scale)
+    ua = np.concatenate([xa / xs, [wa / wscale]])
+    ub = np.concatenate([xb / xs, [wb / wscale]])
+    d = (ub - ua) / max(np.linalg.norm(ub - ua), 1e-300)
+    psi = _psi(hb, kind, test, fun, xa, wa, d, xs, wscale)
+    try:
+        x, w, sig, ok = bif.locate_on_segment(psi, fun, xa, wa, xb, wb, xs, wscale, ta=ta, tb=tb)
+    except (SolverError, np.linalg.LinAlgError):
+        ok = False
+    if not ok:
+        fa, fb = psi(xa, wa), psi(xb, wb)
+        sig = fa / (fa - fb) if fa != fb and fa * fb < 0 else 0.5
+        x, w = xa + sig * (xb - xa), wa + sig * (wb - wa)
+    return x, w, ok
+
+
+def check_between(sm, models, hb, kind, test, states, omegas, i, scale, wscale):
+    """The bifurcation re-located with H' = H + max(2, H/3) harmonics: the bracketing points i, i + 1 (or
+    the next ones out, if the bifurcation moved) padded and corrected with H' harmonics.  (w', H') or
+    (None, H')."""
+    n = sm.system.n
+    Hc = hb.H + max(2, hb.H // 3)
+    hc = models.get(Hc, hb.nu)
+    fun = residual_function(hc)
+    pts = {}
+
+    def point(j):
+        if j not in pts:
+            xp = bif.pad_harmonics(states[j], n, hb.H, Hc)
+            xs = np.full(xp.size, scale)
+            k = j + 1 if j + 1 < len(states) else j - 1
+            d = np.concatenate([(bif.pad_harmonics(states[k], n, hb.H, Hc) - xp) / xs, [(omegas[k] - omegas[j]) / wscale]])
+            d /= max(np.linalg.norm(d), 1e-300)
+            pts[j] = correct_on_plane(fun, xp, omegas[j], d, xs, wscale)[:2]
+        return pts[j]
+
+    for lo, hi in ((i, i + 1), (i - 1, i + 2), (i - 2, i + 3)):
+        if lo < 0 or hi >= len(states):
+            continue
+        try:
+            (xa, wa), (xb, wb) = point(lo), point(hi)
+            xs = np.full(xa.size, scale)
+            ua = np.concatenate([xa / xs, [wa / wscale]])
+            ub = np.concatenate([xb / xs, [wb / wscale]])
+            d = (ub - ua) / max(np.linalg.norm(ub - ua), 1e-300)
+            psi = _psi(hc, kind, test, fun, xa, wa, d, xs, wscale)
+            if psi(xa, wa) * psi(xb, wb) < 0:
+                x, w, ok = locate_between(hc, kind, test, xa, wa, xb, wb, scale, wscale)
+                return (w if ok else None), Hc, x
+        except (SolverError, np.linalg.LinAlgError):
+            continue
+    return None, Hc, None
+
+
+def _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability):
+    """Classify (bifurcation.detect), locate the non-fold bifurcations between consecutive points, and
+    check each with more harmonics (its estimate: the frequency change)."""
+    cfg = sm.cfg
+    fold_int = set()
+    for k, seg in enumerate(segs):
+        for i, _, _ in seg.br.folds:
+            glob = [p for p, (kk, j) in enumerate(cd.index) if kk == k and j == i]
+            if glob:
+                fold_int.add(glob[0])
+    mus = cd.mus if stability else [None] * len(cd.mus)
+    Hmax = max_harmonics(cfg)
+    n = sm.system.n
+    for i, kind, test in bif.detect(mus, cd.bp_sign, fold_int):
+        if cd.models[i] is not cd.models[i + 1]:
+            continue                      # across a change of harmonics: the test values are not comparable
+        hb = cd.models[i]
+        x, w, ok = locate_between(hb, kind, test, cd.states[i], cd.omega[i], cd.states[i + 1], cd.omega[i + 1],
+                                  scale, wscale, cd.tangents[i], cd.tangents[i + 1])
+        wc, Hc, xc = check_between(sm, models, hb, kind, test, cd.states, cd.omega, i, scale, wscale) if ok \
+            else (None, None, None)
+        states = cd.states
+        while cfg.adaptive and wc is not None and abs(wc - w) > cfg.truncation_tol * abs(w) and Hc <= Hmax:
+            # the branch near it with Hc harmonics: carry the neighbouring points over and check again
+            H0 = hb.H
+            hb = models.get(Hc, hb.nu)
+            states = [bif.pad_harmonics(s_, n, H0, Hc) for s_ in states]
+            x, w = xc, wc
+            wc, Hc, xc = check_between(sm, models, hb, kind, test, states, cd.omega, i, scale, wscale)
+        mu = None
+        if stability:
+            try:
+                mu = bif.critical(floquet_hb(hb, x, w), kind)
+            except (SolverError, np.linalg.LinAlgError, ValueError):
+                mu = None
+        resp = float(measure_orbits(sm, hb, [x], [w])[0])
+        b = bif.Bifurcation(kind, float(w), resp, mu, test, bool(ok), i, x)
+        b.harmonics = hb.H
+        b.check = (wc, Hc)
+        if wc is not None:
+            est = abs(wc - w) / abs(w)
+            b.note = f"{wc:.8g} rad/s with {Hc} harmonics (change {est:.2g} relative)"
+            if est > cfg.truncation_tol:
+                cd.warnings.append(f"the {bif.LABELS[kind]} at omega = {w:.8g} rad/s moves by {abs(wc - w):.3g} rad/s "
+                                   f"({est:.2g} relative) from H = {hb.H} to {Hc} harmonics: above truncation_tol = "
+                                   f"{cfg.truncation_tol:g}" + ("" if cfg.adaptive else " (set adaptive = true or raise "
+                                                                                          "harmonics)"))
+        elif ok:
+            b.note = f"not re-located with {Hc} harmonics"
+            cd.warnings.append(f"the {bif.LABELS[kind]} at omega = {w:.8g} rad/s was not re-located with {Hc} "
+                               "harmonics (its truncation error is not estimated)")
+        cd.bifurcations.append(b)
+    cd.bifurcations.sort(key=lambda b: b.omega if b.index < 0 else cd.omega[b.index])
+    _order(cd)
+
+
+def _order(cd):
+    """Bifurcations in branch order (folds by the index of their interval)."""
+    def key(b):
+        if b.index >= 0:
+            return (b.index, 0.5)
+        # a fold: the interval whose frequencies bracket it, in branch order
+        for j in range(len(cd.omega) - 1):
+            lo, hi = sorted((cd.omega[j], cd.omega[j + 1]))
+            if lo <= b.omega <= hi and cd.states[j].size == b.x.size:
+                return (j, 0.5)
+        return (len(cd.omega), 0.0)
+    cd.bifurcations.sort(key=key)
+
+
+# ------------------------------------------------------------------ branch switching
+def switch(sm, models, cd, b: "bif.Bifurcation", scale, progress=None):
+    """The branch born at the bifurcation b (a branch point or a period doubling), continued over the
+    range: (segments, the model, a description) or None with a reason."""
+    cfg = sm.cfg
+    wscale = abs(cfg.range[1] - cfg.range[0])
+    i = b.index
+    hb = cd.models[i]
+    n = sm.system.n
+    lo, hi = min(cfg.range), max(cfg.range)
+    if b.kind == "branch_point":
+        hs = hb
+        xa, xb, x0 = cd.states[i], cd.states[i + 1], b.x
+        what = f"branch from the branch point at omega = {b.omega:.8g} rad/s"
+    else:
+        hs = models.get(2 * hb.H, 2 * hb.nu)
+        xa, xb = bif.embed_doubled(cd.states[i], n, hb.H), bif.embed_doubled(cd.states[i + 1], n, hb.H)
+        x0 = bif.embed_doubled(b.x, n, hb.H)
+        what = f"period-doubled branch from omega = {b.omega:.8g} rad/s (subharmonic {hs.nu})"
+    fun = residual_function(hs)
+    xs = np.full(np.size(x0), scale)
+    ua = np.concatenate([xa / xs, [cd.omega[i] / wscale]])
+    ub = np.concatenate([xb / xs, [cd.omega[i + 1] / wscale]])
+    t = (ub - ua) / max(np.linalg.norm(ub - ua), 1e-300)
+    w0 = b.omega
+    if b.kind == "period_doubling":        # the branch point of the doubled system (an algebraic test)
+        ref = bif.log_abs_det(fun, xa, cd.omega[i], t, xs, wscale)
+        psi = lambda x, w: bif.bordered_det(fun, x, w, t, xs, wscale, ref)        # noqa: E731
+        try:
+            x1, w1, _, ok = bif.locate_on_segment(psi, fun, xa, cd.omega[i], xb, cd.omega[i + 1], xs, wscale)
+            if ok:
+                x0, w0 = x1, w1
+        except (SolverError, np.linalg.LinAlgError):
+            pass
+    try:
+        t2, ratio = bif.switch_direction(fun, x0, w0, t, xs, wscale)
+    except np.linalg.LinAlgError as exc:
+        return None, f"{what}: no switching direction ({exc})"
+    h = max(cfg.ds, 0.05 * cfg.ds_max)
+    u0 = np.concatenate([x0 / xs, [w0 / wscale]])
+    for sgn in (1.0, -1.0):
+        up = u0 + sgn * h * t2
+        try:
+            xn, wn, _ = correct_on_plane(fun, up[:-1] * xs, up[-1] * wscale, sgn * t2, xs, wscale)
+        except (SolverError, np.linalg.LinAlgError):
+            continue
+        un = np.concatenate([xn / xs, [wn / wscale]])
+        if abs((un - u0) @ t2) > 0.5 * h and lo <= wn <= hi:
+            break
+    else:
+        return None, f"{what}: the corrector did not leave the known branch (singular-value ratio {ratio:.2g})"
+    others = [c for c in cd.bifurcations if c.kind == b.kind and c is not b and c.x is not None]
+    ref_pts = [(bif.embed_doubled(c.x, n, hb.H) if b.kind == "period_doubling" else c.x, c.omega) for c in others]
+    travelled = [0.0]
+    prev = [un]
+
+    def stop_if(x, w):             # back at another bifurcation of the same kind (or the origin) of the primary
+        u = np.concatenate([x / xs, [w / wscale]])
+        travelled[0] += float(np.linalg.norm(u - prev[0]))
+        prev[0] = u
+        for xr, wr in ref_pts + ([(x0, w0)] if travelled[0] > 4 * cfg.ds_max else []):
+            if xr.size == x.size and np.linalg.norm(np.concatenate([(x - xr) / xs, [(w - wr) / wscale]])) < cfg.ds_max:
+                return True
+        return False
+
+    w_stop = hi if t2[-1] * sgn >= 0 else lo
+    segs = continue_branch(sm, models, hs, xn, wn, w_stop, scale, progress=None, orientation=sgn * t2,
+                           max_steps=min(cfg.max_steps, 1000), stop_if=stop_if, adaptive=False, bounds=(lo, hi))
+    return segs, what
