@@ -296,13 +296,17 @@ def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
     res = _hb_result(sm, models, segs, scale, cfg.bifurcations)
     if cfg.switch_branches and cfg.stability:
         cd_primary = res.extra.pop("_data")
+        reached = set()
         for b in list(res.bifurcations):
-            if b.kind not in ("branch_point", "period_doubling") or not b.located:
+            if b.kind not in ("branch_point", "period_doubling") or not b.located or id(b) in reached:
                 continue
-            segs2, what = hb_curve.switch(sm, models, cd_primary, b, scale)
+            segs2, what, arrived = hb_curve.switch(sm, models, cd_primary, b, scale)
             if segs2 is None:
                 res.warnings.append(f"branch switching: {what}")
                 continue
+            if arrived is not None:          # the branch came back to the primary at another bifurcation
+                reached.add(id(arrived))
+                what += f", back on the primary branch at omega = {arrived.omega:.8g} rad/s"
             sec = _hb_result(sm, models, segs2, scale, cfg.bifurcations)
             sec.extra.pop("_data", None)
             sec.origin = what

@@ -48,10 +48,18 @@ class HBModel:
         # (piecewise.py) unless kinks = "sampled"; the others are sampled (AFT)
         laws = [el.piecewise_law() if kinks == "exact" else None for el in system.elements]
         # discontinuous (friction sign) or kinked (sampled one-sided, gap) forces: AFT sampling error ~ 1/N
-        # resp. 1/N^2, so these get a denser default grid
+        # resp. 1/N^2, so these get a denser default grid -- with kinks = "exact" only where needed: the
+        # rough laws are evaluated on the dense grid (N_fine) at the evaluations where their samples on the
+        # HB grid (N) are not exact (Element.sampled_exactly: a saturated clutch is a polynomial law)
         smooth = min((2 if law is not None else el.smoothness for el, law in zip(system.elements, laws)), default=2)
-        N = samples or default_samples(H, smooth)
+        if samples:
+            N = N_fine = int(samples)
+        elif kinks == "exact":
+            N, N_fine = default_samples(H, 2), default_samples(H, smooth)
+        else:
+            N = N_fine = default_samples(H, smooth)
         self.N = N
+        self.N_fine = N_fine
         th = 2 * np.pi * np.arange(N) / N
         G = _basis(H, th)
         D = np.zeros((2 * H + 1, 2 * H + 1))
@@ -99,6 +107,9 @@ class HBModel:
         from .piecewise import ExactProjection
 
         g = self._grid
+        self._rough = [e for e, (el, law) in enumerate(zip(self.s.elements, laws))
+                       if law is None and el.smoothness < 2] if self.N_fine > self.N else []
+        self.fine_evaluations = 0
         pw = []
         for e, law in enumerate(laws):
             if law is None:
@@ -114,6 +125,40 @@ class HBModel:
         done = {p[0] for p in pw}
         self._sampled = [e for e in range(len(self.s.elements)) if e not in done]
         self._pw_jump = False
+
+    def exogenous_series(self, e: int):
+        """The exogenous parts (sa, sb, sda, sdb) of element e's coordinate as real series in theta
+        (projections of the grid parts: exact for the harmonic drivers, whose degree nu <= H; a drift
+        term t in sb is not periodic and is projected like the rest)."""
+        key = ("exo", e)
+        v = self._bases.get(key)
+        if v is None:
+            g = self._grid
+            v = self._bases[key] = tuple(x[e] @ self.Pm for x in (g.sa, g.sb, g.sda, g.sdb))
+        return v
+
+    def constant_coefficients(self, X, omega) -> bool:
+        """Whether the variational equation along the orbit X has coefficients constant between the
+        crossings of the exactly integrated laws: every sampled law's dF/ds and dF/ds' are the same at all
+        HB samples (a polynomial law of degree <= 3, exact on the grid, whose derivative -- a polynomial
+        of the coordinates of degree <= 2H -- takes one value at more than 4H points is constant)."""
+        s = self.s
+        A = s.Gf @ np.asarray(X, float).reshape(s.n, self.m)
+        S, Sd, _ = self._element_coordinates(A, omega)
+        for e in self._sampled:
+            el = s.elements[e]
+            if e in self._rough and not el.sampled_exactly(S[e], Sd[e], s.eps):
+                return False
+            _, dFs, dFv = el.smooth_force(S[e], Sd[e], s.eps)
+            if np.ptp(dFs) != 0 or np.ptp(dFv) != 0:
+                return False
+        return True
+
+    def rough_exact(self, X, omega) -> bool:
+        """Whether every rough (discontinuous, sampled) law is exact on the HB grid along the orbit X."""
+        A = self.s.Gf @ np.asarray(X, float).reshape(self.s.n, self.m)
+        S, Sd, _ = self._element_coordinates(A, omega)
+        return all(self.s.elements[e].sampled_exactly(S[e], Sd[e], self.s.eps) for e in self._rough)
 
     @property
     def exact_elements(self) -> list:
@@ -181,7 +226,7 @@ class HBModel:
         for part, scale in self._forcing_terms:
             R -= (fa, fb, fc, fd)[part] * (1.0, 1.0 / omega, omega, omega * omega)[part]
         nel = len(s.elements)
-        if nel and self._pw:
+        if nel and (self._pw or self._rough):
             return self._evaluate_piecewise(Q, QD, QDD, R, omega, jac, dw)
         if nel:
             g = self._grid
@@ -283,6 +328,9 @@ class HBModel:
             if jac:
                 sp = self._dft(np.concatenate([dFs, dFv]))
                 spec_s[smp], spec_v[smp] = sp[:len(smp)], sp[len(smp):]
+            for e in self._rough:          # not exact on this grid: the dense grid for this element
+                if not s.elements[e].sampled_exactly(S[e], Sd[e], s.eps):
+                    self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
         for e, proj, sa, sda, sdb in self._pw:
             Cs = A[e] + sa
             AD = A[e] @ self.D
@@ -296,6 +344,28 @@ class HBModel:
                 if out["jump"] is not None:
                     jumps[e] = out["jump"]
         return Fp, spec_s, spec_v, jumps, Fw
+
+    def _fine_element(self, e, Ae, omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v):
+        """Element e's projections, spectra (scaled to the HB grid's sums) and dF/domega from the dense grid."""
+        s = self.s
+        Nf = self.N_fine
+        self.fine_evaluations += 1
+        G, DG = self.basis(Nf)
+        g = self.grid(Nf)
+        Om = omega / self.nu
+        Sd_ = Ae @ DG
+        S = Ae @ G + g.sa[e] + g.sb[e] / omega
+        Sd = Om * Sd_ + g.sda[e] + omega * g.sdb[e]
+        F, dFs, dFv = s.elements[e].smooth_force(S, Sd, s.eps)
+        Fs = np.fft.rfft(F)
+        Fp[e] = _real_series(Fs[:Jh + 1], Nf)
+        if dw:
+            dS = dFv * (Sd_ / self.nu + g.sdb[e]) - dFs * g.sb[e] / omega ** 2
+            Fw[e] = _real_series(np.fft.rfft(dS)[:self.H + 1], Nf)
+        if jac:
+            scale = self.N / Nf
+            spec_s[e] = np.fft.rfft(dFs)[:self.m] * scale
+            spec_v[e] = np.fft.rfft(dFv)[:self.m] * scale
 
     def _evaluate_piecewise(self, Q, QD, QDD, R, omega, jac, dw):
         """:meth:`evaluate_residual` with exactly integrated elements (R: the linear part and forcing)."""
@@ -501,6 +571,41 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     n, m, nel = s.n, model.m, len(s.elements)
     Xs = np.asarray(Xs, float).reshape(-1, n, m)
     omegas = np.asarray(omegas, float).ravel()
+    if steps is not None or not Xs.shape[0]:
+        return _floquet_steps(model, Xs, omegas, steps, chunk_entries)
+    if model._pw:
+        # piecewise-constant coefficients (every exactly integrated law between its crossings, and every
+        # sampled law whose dF/ds, dF/ds' samples are constant: a saturated clutch): the exponentials of
+        # the crossing-cut intervals are exact, however few -- eight uniform intervals then suffice
+        const = np.array([model.constant_coefficients(X, w) for X, w in zip(Xs, omegas)])
+        if np.any(const):
+            out = np.empty((Xs.shape[0], 2 * n), complex)
+            out[const] = _floquet_steps(model, Xs[const], omegas[const], 8, chunk_entries)
+            if not np.all(const):
+                out[~const] = _floquet_default(model, Xs[~const], omegas[~const], chunk_entries)
+            return out
+    return _floquet_default(model, Xs, omegas, chunk_entries)
+
+
+def _floquet_default(model, Xs, omegas, chunk_entries):
+    """max(512, 2 N) intervals; the dense grid's for the orbits whose rough laws are not exact on the HB grid."""
+    if not model._rough:
+        return _floquet_steps(model, Xs, omegas, None, chunk_entries)
+    n = model.s.n
+    fine = np.array([not model.rough_exact(X, w) for X, w in zip(Xs, omegas)])
+    if np.any(fine) and not np.all(fine):
+        out = np.empty((Xs.shape[0], 2 * n), complex)
+        out[fine] = _floquet_steps(model, Xs[fine], omegas[fine], max(512, 2 * model.N_fine), chunk_entries)
+        out[~fine] = _floquet_steps(model, Xs[~fine], omegas[~fine], max(512, 2 * model.N), chunk_entries)
+        return out
+    return _floquet_steps(model, Xs, omegas, max(512, 2 * (model.N_fine if np.any(fine) else model.N)),
+                          chunk_entries)
+
+
+def _floquet_steps(model, Xs, omegas, steps, chunk_entries):
+    """The batch with ``steps`` uniform intervals (default max(512, 2 N)), cut at crossings."""
+    s = model.s
+    n = s.n
     M = steps or max(512, 2 * model.N)
     key = ("mid", M)
     mid = model._bases.get(key)
@@ -512,6 +617,43 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     Minv = np.linalg.inv(s.M)
     d = 2 * n
     split = bool(model._pw)        # exactly integrated laws: intervals split at their crossings
+    if split and Xs.shape[0]:
+        cuts = _crossing_phases(model, Xs)
+        has = np.array([c.size > 0 for c in cuts])
+        if not np.all(has):        # orbits without a crossing: the uniform intervals are exact already
+            out = np.empty((Xs.shape[0], d), complex)
+            out[~has] = _floquet_uniform(model, Xs[~has], omegas[~has], M, chunk_entries)
+            if np.any(has):
+                out[has] = _floquet_core(model, Xs[has], omegas[has], M, chunk_entries, True,
+                                         [c for c, f in zip(cuts, has) if f])
+            return out
+        return _floquet_core(model, Xs, omegas, M, chunk_entries, True, cuts)
+    return _floquet_core(model, Xs, omegas, M, chunk_entries, split)
+
+
+def _floquet_uniform(model, Xs, omegas, M, chunk_entries):
+    return _floquet_core(model, Xs, omegas, M, chunk_entries, False)
+
+
+def _crossing_phases(model, Xs):
+    """Per orbit, the crossing phases of its exactly integrated laws."""
+    from .piecewise import crossings
+
+    A = model.s.Gf @ Xs                                       # (P, nel, m)
+    out = []
+    for p in range(Xs.shape[0]):
+        th = [crossings(A[p, e] + sa, (A[p, e] + sa) @ model.G, proj.law.breaks)[0]
+              for e, proj, sa, _, _ in model._pw]
+        out.append(np.concatenate(th) if th else np.zeros(0))
+    return out
+
+
+def _floquet_core(model, Xs, omegas, M, chunk_entries, split, cuts=None):
+    s = model.s
+    n, m, nel = s.n, model.m, len(s.elements)
+    G, DG, grid = model._bases[("mid", M)]
+    Minv = np.linalg.inv(s.M)
+    d = 2 * n
     P = max(1, int(chunk_entries // ((M + (8 if split else 0)) * d * d)))
     out = np.empty((Xs.shape[0], d), complex)
     for c0 in range(0, Xs.shape[0], P):
@@ -523,7 +665,7 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
             # the piecewise-affine laws' coefficients are constant between crossings: the uniform
             # intervals are cut at the crossings (zero-length padding intervals are identities), so
             # the midpoint exponentials of such a law are exact
-            S, Sd, hh = _split_coordinates(model, Q, w, M)
+            S, Sd, hh = _split_coordinates(model, Q, w, M, None if cuts is None else cuts[c0:c0 + P])
             Mp = hh.shape[1]
             _, dFs, dFv = s.element_laws(np.moveaxis(S, 1, 0), np.moveaxis(Sd, 1, 0))
         elif nel:
@@ -573,45 +715,55 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     return out
 
 
-def _split_coordinates(model: HBModel, Q, w, M: int):
+def _split_coordinates(model: HBModel, Q, w, M: int, cuts=None):
     """Element coordinates (S, Sd: (P, nel, M')) at the midpoints of the M uniform intervals of each
     orbit cut at the crossings of its exactly integrated laws, and the intervals' durations hh (P, M')
-    (orbits with fewer crossings padded with zero-length intervals at the period's end)."""
-    from .piecewise import crossings
+    (orbits with fewer crossings padded with zero-length intervals at the period's end).  The uniform
+    midpoints' values come from the cached midpoint basis; only the sub-intervals of the cut ones are
+    evaluated afresh."""
+    from .piecewise import basis_at
 
     s = model.s
     P = Q.shape[0]
     A = s.Gf @ Q                                              # (P, nel, m)
-    cuts = []
-    for p in range(P):
-        th = [crossings(A[p, e] + sa, (A[p, e] + sa) @ model.G, proj.law.breaks)[0]
-              for e, proj, sa, _, _ in model._pw]
-        cuts.append(np.concatenate(th) if th else np.zeros(0))
-    extra = max((c.size for c in cuts), default=0)
-    base = 2 * np.pi * np.arange(M + 1) / M
-    B = np.empty((P, M + 1 + extra))
-    for p, c in enumerate(cuts):
-        B[p] = np.sort(np.concatenate([base, c, np.full(extra - c.size, 2 * np.pi)]))
-    dth = np.diff(B, axis=1)
-    mid = 0.5 * (B[:, 1:] + B[:, :-1])
-    Mp = mid.shape[1]
-    H = model.H
-    kt = np.multiply.outer(mid, np.arange(1, H + 1))         # (P, M', H)
-    cs, sn = np.cos(kt), np.sin(kt)
-    k = np.arange(1, H + 1)
-    a, b = A[..., 1::2], A[..., 2::2]                           # (P, nel, H)
-    S = A[..., :1] + np.einsum("pmh,peh->pem", cs, a) + np.einsum("pmh,peh->pem", sn, b)
-    Sth = np.einsum("pmh,peh->pem", cs, k * b) - np.einsum("pmh,peh->pem", sn, k * a)
-    g = s.grid_parts(mid.ravel(), model.nu)
     nel = A.shape[1]
-    Om = (w / model.nu)[:, None, None]
-
-    def exo(x):
-        return x.reshape(nel, P, Mp).transpose(1, 0, 2)
-
-    S = S + exo(g.sa) + exo(g.sb) / w[:, None, None]
-    Sd = Om * Sth + exo(g.sda) + w[:, None, None] * exo(g.sdb)
-    hh = dth * (model.nu / w)[:, None]
+    G, DG, grid = model._bases[("mid", M)]
+    cuts = _crossing_phases(model, Q) if cuts is None else cuts
+    extra = max((c.size for c in cuts), default=0)
+    Mp = M + extra
+    Om = w / model.nu
+    S0 = A @ G + grid.sa + grid.sb / w[:, None, None]                        # (P, nel, M)
+    Sd0 = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
+    S = np.empty((P, nel, Mp))
+    Sd = np.empty((P, nel, Mp))
+    hh = np.zeros((P, Mp))
+    h = 2 * np.pi / M
+    for p, c in enumerate(cuts):
+        c = np.sort(c)
+        j = np.minimum((c / h).astype(int), M - 1)
+        cut = np.unique(j)
+        # sub-intervals of the cut intervals: boundaries = interval ends and the crossings inside
+        bnd = np.sort(np.concatenate([cut * h, (cut + 1) * h, c]))
+        owner = np.minimum(((bnd[:-1] + bnd[1:]) * 0.5 / h).astype(int), M - 1)
+        keep = np.isin(owner, cut) & (bnd[1:] > bnd[:-1])
+        lo, hi, owner = bnd[:-1][keep], bnd[1:][keep], owner[keep]
+        mids = 0.5 * (lo + hi)
+        Bm = basis_at(model.H, mids)                                         # (k, m)
+        g = s.grid_parts(mids, model.nu)
+        Ss = A[p] @ Bm.T + g.sa + g.sb / w[p]
+        Sds = Om[p] * (A[p] @ (Bm @ model.D.T).T) + g.sda + w[p] * g.sdb
+        # merge: the uniform intervals not cut, then the sub-intervals, in phase order
+        unc = np.setdiff1d(np.arange(M), cut, assume_unique=True)
+        ph = np.concatenate([(unc + 0.5) * h, mids])
+        order = np.argsort(ph, kind="stable")
+        n_ = order.size
+        S[p, :, :n_] = np.concatenate([S0[p][:, unc], Ss], axis=1)[:, order]
+        Sd[p, :, :n_] = np.concatenate([Sd0[p][:, unc], Sds], axis=1)[:, order]
+        hh[p, :n_] = np.concatenate([np.full(unc.size, h), hi - lo])[order]
+        if n_ < Mp:                                  # zero-length padding: identities
+            S[p, :, n_:] = S[p, :, n_ - 1:n_]
+            Sd[p, :, n_:] = Sd[p, :, n_ - 1:n_]
+    hh *= (model.nu / w)[:, None]
     return S, Sd, hh
 
 

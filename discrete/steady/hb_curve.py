@@ -161,23 +161,48 @@ def measure_orbits(sm, hb: HBModel, Xs, omegas) -> np.ndarray:
     A = s.Gf[e] @ Q                                               # (k, 2H+1)
     k = A.shape[0]
     Om = w / hb.nu
+    sa, sb, sda, sdb = hb.exogenous_series(e)                     # trigonometric series of the exogenous parts
+    Cs = A + sa + np.multiply.outer(1.0 / w, sb)
+    ADs = A @ hb.D
+    Cv = Om[:, None] * ADs + sda + np.multiply.outer(w, sdb)
 
     def force(theta):                                             # |F| of the element at phases (k, p)
         th = np.asarray(theta, float)
-        p = th.shape[1]
-        g = s.grid_parts(th.ravel(), hb.nu)
-        S = measures.series_values(A, th) + g.sa[e].reshape(k, p) + g.sb[e].reshape(k, p) / w[:, None]
-        Sd = Om[:, None] * measures.series_values(A, th, 1) + g.sda[e].reshape(k, p) + w[:, None] * g.sdb[e].reshape(k, p)
+        S = measures.series_values(Cs, th)
+        Sd = measures.series_values(Cv, th)
         return np.abs(el.smooth_force(S, Sd, s.eps)[0])
 
+    law = el.piecewise_law()
+    if meas != "h1" and law is not None and not np.any(np.asarray(law.c)) and not np.any(sb):
+        # a law of s alone, affine between its breaks: the extremes of |F| over the orbit are among
+        # |F| at the extremes of s and at the breaks (and zeros of F) inside that range
+        smax, smin = measures.series_extremes(Cs)
+        return measures.from_extremes(meas, *_piecewise_abs_extremes(law, smin, smax)) / cfg.scale
     P = max(512, hb.N)
     if meas == "h1":
         P = max(4096, hb.N)
         th = np.broadcast_to(2 * np.pi * np.arange(P) / P, (k, P))
         val = measures.periodic_h1(force(th), w, hb.nu)
     else:
-        val = measures.from_extremes(meas, *measures.golden_extremes(force, k, P))
+        val = measures.from_extremes(meas, *measures.golden_extremes(force, k, P, iterations=30))
     return val / cfg.scale
+
+
+def _piecewise_abs_extremes(law, smin, smax):
+    """(max, min) of |F(s)| over s in [smin, smax] (per orbit) for a piecewise-affine law of s alone:
+    the candidates are the interval's ends, the breaks inside it and the zeros of each piece."""
+    a, b = np.asarray(law.a, float), np.asarray(law.b, float)
+    br = np.asarray(law.breaks, float)
+    cand = [smin, smax] + [np.clip(np.full_like(smin, x), smin, smax) for x in br]
+    for p in range(a.size):
+        if b[p] != 0:
+            z = -a[p] / b[p]
+            lo = br[p - 1] if p > 0 else -np.inf
+            hi = br[p] if p < br.size else np.inf
+            if lo <= z <= hi:
+                cand.append(np.clip(np.full_like(smin, z), smin, smax))
+    V = np.abs(np.array([law.force(c, 0.0 * c) for c in cand]))
+    return V.max(axis=0), V.min(axis=0)
 
 
 # ------------------------------------------------------------------ folds
@@ -192,7 +217,14 @@ def fold_point(hb, br, i, xs, wscale):
     t0 = ta + fr * (tb - ta)
     try:
         x, w, _ = locate_fold(fun, x0, w0, t0, xs, wscale)
-        if min(br.w[i], br.w[i + 1]) - abs(br.w[i + 1] - br.w[i]) <= w <= max(br.w[i], br.w[i + 1]) + abs(br.w[i + 1] - br.w[i]):
+        # on this stretch of the branch: within the two points' segment, in the scaled variables
+        ua = np.concatenate([br.x[i] / xs, [br.w[i] / wscale]])
+        ub = np.concatenate([br.x[i + 1] / xs, [br.w[i + 1] / wscale]])
+        uf = np.concatenate([x / xs, [w / wscale]])
+        d = ub - ua
+        L2 = float(d @ d)
+        f = float((uf - ua) @ d) / max(L2, 1e-300)
+        if -0.5 <= f <= 1.5 and np.linalg.norm(uf - ua - f * d) <= np.sqrt(L2):
             return x, w, t0, True
     except (SolverError, np.linalg.LinAlgError):
         pass
@@ -499,35 +531,54 @@ def switch(sm, models, cd, b: "bif.Bifurcation", scale, progress=None):
     try:
         t2, ratio = bif.switch_direction(fun, x0, w0, t, xs, wscale)
     except np.linalg.LinAlgError as exc:
-        return None, f"{what}: no switching direction ({exc})"
-    h = max(cfg.ds, 0.05 * cfg.ds_max)
+        return None, f"{what}: no switching direction ({exc})", None
     u0 = np.concatenate([x0 / xs, [w0 / wscale]])
-    for sgn in (1.0, -1.0):
-        up = u0 + sgn * h * t2
-        try:
-            xn, wn, _ = correct_on_plane(fun, up[:-1] * xs, up[-1] * wscale, sgn * t2, xs, wscale)
-        except (SolverError, np.linalg.LinAlgError):
-            continue
-        un = np.concatenate([xn / xs, [wn / wscale]])
-        if abs((un - u0) @ t2) > 0.5 * h and lo <= wn <= hi:
+    found = False
+    for h in (max(cfg.ds, 0.05 * cfg.ds_max), 0.004, 0.001):        # a curved branch: smaller steps
+        for sgn in (1.0, -1.0):
+            up = u0 + sgn * h * t2
+            try:
+                xn, wn, _ = correct_on_plane(fun, up[:-1] * xs, up[-1] * wscale, sgn * t2, xs, wscale)
+            except (SolverError, np.linalg.LinAlgError):
+                continue
+            un = np.concatenate([xn / xs, [wn / wscale]])
+            if lo <= wn <= hi and np.linalg.norm(un - u0) < 4 * h:
+                found = True
+                break
+        if found:
             break
     else:
-        return None, f"{what}: the corrector did not leave the known branch (singular-value ratio {ratio:.2g})"
-    others = [c for c in cd.bifurcations if c.kind == b.kind and c is not b and c.x is not None]
-    ref_pts = [(bif.embed_doubled(c.x, n, hb.H) if b.kind == "period_doubling" else c.x, c.omega) for c in others]
+        return None, f"{what}: the corrector did not leave the known branch (singular-value ratio {ratio:.2g})", None
+    others = [c for c in cd.bifurcations if c.kind == b.kind and c is not b and c.x is not None
+              and cd.models[c.index] is hb]
+    ref_pts = [(bif.embed_doubled(c.x, n, hb.H) if b.kind == "period_doubling" else c.x, c.omega, c) for c in others]
     travelled = [0.0]
     prev = [un]
+    arrived = []
 
     def stop_if(x, w):             # back at another bifurcation of the same kind (or the origin) of the primary
         u = np.concatenate([x / xs, [w / wscale]])
-        travelled[0] += float(np.linalg.norm(u - prev[0]))
+        step = u - prev[0]
+        L = float(np.linalg.norm(step))
+        travelled[0] += L
+        a = prev[0]
         prev[0] = u
-        for xr, wr in ref_pts + ([(x0, w0)] if travelled[0] > 4 * cfg.ds_max else []):
-            if xr.size == x.size and np.linalg.norm(np.concatenate([(x - xr) / xs, [(w - wr) / wscale]])) < cfg.ds_max:
+        for xr, wr, c in ref_pts + ([(x0, w0, None)] if travelled[0] > 4 * cfg.ds_max else []):
+            if xr.size != x.size:
+                continue
+            # the last step passed the bifurcation: its distance to the step's segment is a fraction of the step
+            ur = np.concatenate([xr / xs, [wr / wscale]])
+            f = np.clip(float((ur - a) @ step) / max(L * L, 1e-300), 0.0, 1.0)
+            if np.linalg.norm(ur - a - f * step) <= 0.25 * L:
+                arrived.append(c)
                 return True
         return False
 
     w_stop = hi if t2[-1] * sgn >= 0 else lo
     segs = continue_branch(sm, models, hs, xn, wn, w_stop, scale, progress=None, orientation=sgn * t2,
                            max_steps=min(cfg.max_steps, 1000), stop_if=stop_if, adaptive=False, bounds=(lo, hi))
-    return segs, what
+    if arrived:
+        segs[-1].br.reason = (f"reached the primary branch again at omega = {segs[-1].br.w[-1]:.10g}"
+                              + (f" (the {bif.LABELS[arrived[-1].kind]} at {arrived[-1].omega:.8g} rad/s)"
+                                 if arrived[-1] is not None else " (where it was born)"))
+    return segs, what, (arrived[-1] if arrived else None)

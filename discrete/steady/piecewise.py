@@ -90,6 +90,9 @@ def _value_slope(C, theta):
     return C[0] + c @ a + s @ b, c @ (k * b) - s @ (k * a)
 
 
+_NONE = (np.zeros(0), np.zeros(0, int), np.zeros(0))
+
+
 def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
     """Roots of ``s(theta) = b`` over one period for every break b of the trigonometric polynomial with
     real coefficients C, sampled at ``samples`` (N equidistant phases from 0).  Returns (theta in
@@ -101,6 +104,13 @@ def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
     B = np.asarray(breaks, float)
     N = S.size
     h = TWO_PI / N
+    H = (C.size - 1) // 2
+    k = np.arange(1, H + 1)
+    a, b = C[1::2], C[2::2]
+    reach = 0.5 * h * h * float(k * k @ (np.abs(a) + np.abs(b)))
+    lo_s, hi_s = S.min(), S.max()
+    if np.all((B > hi_s + reach) | (B < lo_s - reach)):  # every break clear of the orbit: no crossing
+        return _NONE
     Sc = np.concatenate([S, S[:1]])                      # closed: sample N is sample 0
     d = Sc[:, None] - B                                  # (N + 1, breaks)
     above = d > 0
@@ -108,16 +118,12 @@ def crossings(C, samples, breaks, tol: float = 1e-14, maxit: int = 30):
     lo = n * h
     flo, fhi = d[n, bi], d[n + 1, bi]
     hi = lo + h
-    H = (C.size - 1) // 2
-    k = np.arange(1, H + 1)
-    a, b = C[1::2], C[2::2]
     # a contact shorter than a sample interval: a local extremum of the samples within the reach of the
     # curvature bound (|s - s_n| <= max|s''| h^2 / 2 near an extremum) of a break it does not cross
-    reach = 0.5 * h * h * float(k * k @ (np.abs(a) + np.abs(b)))
     if np.any(np.abs(d) <= reach):
         lo, hi, flo, fhi, bi = _grazing_brackets(C, S, B, h, reach, lo, hi, flo, fhi, bi)
     if lo.size == 0:
-        return np.zeros(0), np.zeros(0, int), np.zeros(0)
+        return _NONE
     bv = B[bi]
     den = fhi - flo
     th = lo - flo * (hi - lo) / np.where(den != 0, den, 1.0)

@@ -34,32 +34,77 @@ def estimate(hb, X, omega, direction) -> float:
 
 
 def estimates(hb, Xs, omegas, direction) -> np.ndarray:
-    """:func:`estimate` of many orbits."""
+    """:func:`estimate` of many orbits (the dynamic-stiffness solves batched)."""
     s = hb.s
     n, H, m = s.n, hb.H, hb.m
     g = np.asarray(direction, float)
-    out = np.zeros(len(Xs))
-    if not len(s.elements):
+    P = len(Xs)
+    out = np.zeros(P)
+    if not len(s.elements) or P == 0:
         return out
     J = 2 * H
     k = np.arange(H + 1, J + 1)
-    for i, (X, w) in enumerate(zip(Xs, omegas)):
-        Q = np.asarray(X, float).reshape(n, m)
-        Fp, spec_s, spec_v, _, _ = hb.element_projection(Q, w, jac=True, J=J)
-        hi = Fp[:, 2 * H + 1:]                                     # (nel, 2H): harmonics H+1..2H
-        f = s.Gf.T @ (hi[:, 0::2] - 1j * hi[:, 1::2])             # (n, H) complex amplitudes
-        Kb = s.K - (s.Gf.T * (spec_s[:, 0].real / hb.N)) @ s.Gf
-        Cb = s.C - (s.Gf.T * (spec_v[:, 0].real / hb.N)) @ s.Gf
-        W = w / hb.nu
-        Z = Kb[None] - ((k * W) ** 2)[:, None, None] * s.M[None] + 1j * (k * W)[:, None, None] * Cb[None]
-        dq = np.linalg.solve(Z, f.T[..., None])[..., 0]            # (H, n)
-        dr = dq @ g
-        r = g @ Q
-        amp = np.hypot(r[1::2], r[2::2]).sum()                    # bounds the half range; a cheap scale
-        half = _half_range(r)
-        scale = half if half > 0 else max(amp, abs(r[0]), 1e-300)
-        out[i] = float(np.sum(np.abs(dr)) / scale)
-    return out
+    f = np.empty((P, H, n), complex)
+    Kb = np.empty((P, n, n))
+    Cb = np.empty((P, n, n))
+    Q = np.asarray(Xs, float).reshape(P, n, m)
+    hi_all, ms, mv = _high_harmonics(hb, Q, np.asarray(omegas, float), J)
+    for i in range(P):
+        hi = hi_all[i]                                             # (nel, 2H): harmonics H+1..2H
+        f[i] = (hi[:, 0::2] - 1j * hi[:, 1::2]).T @ s.Gf           # (H, n) complex amplitudes
+        Kb[i] = s.K - (s.Gf.T * ms[i]) @ s.Gf
+        Cb[i] = s.C - (s.Gf.T * mv[i]) @ s.Gf
+    W = np.asarray(omegas, float) / hb.nu
+    kW = np.multiply.outer(W, k)                                   # (P, H)
+    if n == 1:
+        Z = Kb[:, :1, 0] - kW ** 2 * s.M[0, 0] + 1j * kW * Cb[:, :1, 0]
+        dr = f[..., 0] / Z * g[0]
+    else:
+        Z = Kb[:, None] - (kW ** 2)[..., None, None] * s.M + 1j * kW[..., None, None] * Cb[:, None]
+        dr = np.linalg.solve(Z, f[..., None])[..., 0] @ g          # (P, H)
+    r = Q.transpose(0, 2, 1) @ g                                   # (P, m): the response quantity's series
+    half = np.array([_half_range(x) for x in r])
+    amp = np.hypot(r[:, 1::2], r[:, 2::2]).sum(axis=1)
+    scale = np.where(half > 0, half, np.maximum(np.maximum(amp, np.abs(r[:, 0])), 1e-300))
+    return np.sum(np.abs(dr), axis=1) / scale
+
+
+def _high_harmonics(hb, Q, omegas, J):
+    """Element force projections on harmonics H+1..J (P, nel, 2(J-H)) and the period averages of dF/ds,
+    dF/ds' (P, nel) of the orbits Q (P, n, m): the sampled laws of all orbits at once, the exact
+    projections orbit by orbit (an orbit whose rough law is not exact on the grid: the dense grid)."""
+    s = hb.s
+    P = Q.shape[0]
+    H, nel = hb.H, len(s.elements)
+    out = np.zeros((P, nel, 2 * (J - H)))
+    ms = np.zeros((P, nel))
+    mv = np.zeros((P, nel))
+    A = s.Gf @ Q                                                   # (P, nel, m)
+    g = hb._grid
+    Om = (omegas / hb.nu)[:, None, None]
+    S = A @ hb.G + g.sa + g.sb / omegas[:, None, None]
+    Sd = Om * (A @ hb.DG) + g.sda + omegas[:, None, None] * g.sdb
+    redo = set()
+    for e in hb._sampled:
+        el = s.elements[e]
+        F, dFs, dFv = el.smooth_force(S[:, e], Sd[:, e], s.eps)   # (P, N)
+        spec = np.fft.rfft(F, axis=-1)[:, H + 1:J + 1] * (2.0 / hb.N)
+        out[:, e, 0::2], out[:, e, 1::2] = spec.real, -spec.imag
+        ms[:, e], mv[:, e] = dFs.mean(axis=-1), dFv.mean(axis=-1)
+        if e in hb._rough:
+            redo |= {i for i in range(P) if not el.sampled_exactly(S[i, e], Sd[i, e], s.eps)}
+    for e, proj, sa, sda, sdb in hb._pw:
+        for i in range(P):
+            Cs = A[i, e] + sa
+            Cv = Om[i, 0, 0] * (A[i, e] @ hb.D) + sda + omegas[i] * sdb
+            r = proj.evaluate(Cs, Cv, S[i, e], J=J, jac=True)
+            out[i, e] = r["F"][2 * H + 1:]
+            ms[i, e], mv[i, e] = r["spec_s"][0].real, r["spec_v"][0].real
+    for i in sorted(redo):                                         # the dense grid for these orbits
+        Fp, spec_s, spec_v, _, _ = hb.element_projection(Q[i], omegas[i], jac=True, J=J)
+        out[i] = Fp[:, 2 * H + 1:]
+        ms[i], mv[i] = spec_s[:, 0].real / hb.N, spec_v[:, 0].real / hb.N
+    return out, ms, mv
 
 
 def _half_range(r, points: int = 256) -> float:

@@ -174,6 +174,13 @@ class Element:
     smooth_law = True
     """Whether :meth:`smooth_force` exists (harmonic balance can use the element)."""
 
+    def sampled_exactly(self, s, sd, eps: float) -> bool:
+        """Whether the smooth law, on one orbit sampled at s, s' (equidistant, one period), is a polynomial
+        of degree <= 3 in (s, s') between and at the samples -- then harmonic balance's AFT on 4 H + 2 or
+        more samples projects it exactly and the dense grid of a rough law is not needed (a smooth law:
+        True; a discontinuous or kinked one: False unless it says otherwise)."""
+        return self.smoothness == 2
+
     def piecewise_law(self):
         """The smooth law as a piecewise-affine function of (s, s') with breaks in s
         (:class:`PiecewiseAffineLaw`: ``F = a_p + b_p s + c_p s'`` between the

@@ -51,7 +51,7 @@ def plot_afc(result, path, ax=None, label=None, title: str | None = None) -> Non
             fig, ax = plt.subplots(figsize=(7, 4.5))
     _, kinds = _curve(ax, result, label)
     for sec in getattr(result, "secondary", []) or []:
-        _, k2 = _curve(ax, sec, label=f"{sec.origin}", color=None)
+        _, k2 = _curve(ax, sec, label=sec.origin.split(", back on")[0].replace(" rad/s", ""), color=None)
         kinds |= k2
     for kind in ("fold", "branch_point", "period_doubling", "neimark_sacker"):
         if kind in kinds:
@@ -60,7 +60,7 @@ def plot_afc(result, path, ax=None, label=None, title: str | None = None) -> Non
         xlabel = "z = omega / omega_ref" if result.omega_ref else "omega, rad/s"
         ax.set_ylabel(result.response_label)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper left")
+        ax.legend(fontsize=7, loc="upper left")
         if title:
             ax.set_title(title, fontsize=10)
         if strip:
