@@ -243,11 +243,29 @@ def check_fold(sm, models, hb, x, w, t, scale, wscale):
     hc = models.get(Hc, hb.nu)
     xp = bif.pad_harmonics(x, n, hb.H, Hc)
     tp = np.concatenate([bif.pad_harmonics(t[:-1], n, hb.H, Hc), t[-1:]])
+    xs = np.full(xp.size, scale)
+    fun = residual_function(hc)
     try:
-        xc, wc, _ = locate_fold(residual_function(hc), xp, w, tp, np.full(xp.size, scale), wscale)
+        xc, wc, _ = locate_fold(fun, xp, w, tp, xs, wscale)
+        if abs(wc - w) <= 0.05 * wscale:
+            return wc, Hc, xc
     except (SolverError, np.linalg.LinAlgError):
-        return None, Hc, None
-    return wc, Hc, xc
+        pass
+    # the Newton system needs a differentiable Jacobian (sampled kinks are not): two points on either side
+    # of the fold with H' harmonics, on planes across the tangent, and the bounded search between them
+    try:
+        d = max(1e-3, 1e-4 * wscale / max(abs(w), 1e-300))
+        pts = []
+        for sgn in (-1.0, 1.0):
+            u = np.concatenate([xp / xs, [w / wscale]]) + sgn * d * tp
+            pts.append(correct_on_plane(fun, u[:-1] * xs, u[-1] * wscale, tp, xs, wscale)[:2])
+        (xa, wa), (xb, wb) = pts
+        xc, wc = refine_fold(fun, xa, wa, xb, wb, xs, 0.5 * (wa + wb) < w)     # a maximum of omega?
+        if abs(wc - w) <= 0.05 * wscale:
+            return wc, Hc, xc
+    except (SolverError, np.linalg.LinAlgError, ValueError):
+        pass
+    return None, Hc, None
 
 
 # ------------------------------------------------------------------ the whole curve
@@ -284,17 +302,17 @@ def analyse(sm, models, segs, scale, stability=True, locate=True) -> CurveData:
             cd.tangents.append(br.tangents[j])
             cd.bp_sign.append(br.bp_sign[j] if br.bp_sign[j] != 0 else None)
             cd.index.append((k, j))
-        # folds of this segment (and one between the previous segment's last tangent and this one's first)
-        cand = [i for i, _, _ in br.folds]
-        for i in cand:
-            _add_fold(sm, models, cd, seg, i, scale, wscale, stability)
+        # folds of this segment, with the index of their interval on the whole branch
+        offset = len(cd.omega) - len(xs_)
+        for i, _, _ in br.folds:
+            _add_fold(sm, models, cd, seg, i, scale, wscale, stability, offset + i)
     _fold_jumps(cd, cfg)
     if locate:
         _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability)
     return cd
 
 
-def _add_fold(sm, models, cd, seg, i, scale, wscale, stability):
+def _add_fold(sm, models, cd, seg, i, scale, wscale, stability, index=-1):
     cfg = sm.cfg
     hb, br = seg.hb, seg.br
     x, w, t, ok = fold_point(hb, br, i, seg.xs, wscale)
@@ -331,7 +349,7 @@ def _add_fold(sm, models, cd, seg, i, scale, wscale, stability):
         except (SolverError, np.linalg.LinAlgError, ValueError):
             mu = None
     cd.folds.append(fold)
-    b = bif.Bifurcation("fold", float(w), resp, mu, "tangent d omega / ds (extended Newton)", bool(ok), -1, x)
+    b = bif.Bifurcation("fold", float(w), resp, mu, "tangent d omega / ds (extended Newton)", bool(ok), index, x)
     b.harmonics, b.check = int(H), (wc, Hc)
     if wc is not None:
         b.note = f"{wc:.8g} rad/s with {Hc} harmonics (change {est:.2g} relative)"
@@ -428,12 +446,9 @@ def _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability):
     """Classify (bifurcation.detect), locate the non-fold bifurcations between consecutive points, and
     check each with more harmonics (its estimate: the frequency change)."""
     cfg = sm.cfg
-    fold_int = set()
-    for k, seg in enumerate(segs):
-        for i, _, _ in seg.br.folds:
-            glob = [p for p, (kk, j) in enumerate(cd.index) if kk == k and j == i]
-            if glob:
-                fold_int.add(glob[0])
+    fold_int = {b.index for b in cd.bifurcations if b.kind == "fold"} | {
+        p for k, seg in enumerate(segs) for i, _, _ in seg.br.folds
+        for p, (kk, j) in enumerate(cd.index) if kk == k and j == i}
     mus = cd.mus if stability else [None] * len(cd.mus)
     Hmax = max_harmonics(cfg)
     n = sm.system.n
@@ -472,26 +487,11 @@ def _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability):
                                    f"{cfg.truncation_tol:g}" + ("" if cfg.adaptive else " (set adaptive = true or raise "
                                                                                           "harmonics)"))
         elif ok:
-            b.note = f"not re-located with {Hc} harmonics"
-            cd.warnings.append(f"the {bif.LABELS[kind]} at omega = {w:.8g} rad/s was not re-located with {Hc} "
-                               "harmonics (its truncation error is not estimated)")
+            cd.warnings.append(f"the {bif.LABELS[kind]} near omega = {w:.8g} rad/s found with H = {hb.H} was not "
+                               f"re-located with {Hc} harmonics: not reported (a truncation artefact)")
+            continue
         cd.bifurcations.append(b)
-    cd.bifurcations.sort(key=lambda b: b.omega if b.index < 0 else cd.omega[b.index])
-    _order(cd)
-
-
-def _order(cd):
-    """Bifurcations in branch order (folds by the index of their interval)."""
-    def key(b):
-        if b.index >= 0:
-            return (b.index, 0.5)
-        # a fold: the interval whose frequencies bracket it, in branch order
-        for j in range(len(cd.omega) - 1):
-            lo, hi = sorted((cd.omega[j], cd.omega[j + 1]))
-            if lo <= b.omega <= hi and cd.states[j].size == b.x.size:
-                return (j, 0.5)
-        return (len(cd.omega), 0.0)
-    cd.bifurcations.sort(key=key)
+    cd.bifurcations.sort(key=lambda b: (b.index, b.omega))
 
 
 # ------------------------------------------------------------------ branch switching
@@ -501,16 +501,18 @@ def switch(sm, models, cd, b: "bif.Bifurcation", scale, progress=None):
     cfg = sm.cfg
     wscale = abs(cfg.range[1] - cfg.range[0])
     i = b.index
-    hb = cd.models[i]
     n = sm.system.n
+    hb0 = cd.models[i]
+    hb = models.get(b.harmonics or hb0.H, hb0.nu)      # adaptive: the harmonics it was located with
+    sa_, sb_ = (bif.pad_harmonics(cd.states[j], n, hb0.H, hb.H) for j in (i, i + 1))
     lo, hi = min(cfg.range), max(cfg.range)
     if b.kind == "branch_point":
         hs = hb
-        xa, xb, x0 = cd.states[i], cd.states[i + 1], b.x
+        xa, xb, x0 = sa_, sb_, b.x
         what = f"branch from the branch point at omega = {b.omega:.8g} rad/s"
     else:
         hs = models.get(2 * hb.H, 2 * hb.nu)
-        xa, xb = bif.embed_doubled(cd.states[i], n, hb.H), bif.embed_doubled(cd.states[i + 1], n, hb.H)
+        xa, xb = bif.embed_doubled(sa_, n, hb.H), bif.embed_doubled(sb_, n, hb.H)
         x0 = bif.embed_doubled(b.x, n, hb.H)
         what = f"period-doubled branch from omega = {b.omega:.8g} rad/s (subharmonic {hs.nu})"
     fun = residual_function(hs)
@@ -549,9 +551,13 @@ def switch(sm, models, cd, b: "bif.Bifurcation", scale, progress=None):
             break
     else:
         return None, f"{what}: the corrector did not leave the known branch (singular-value ratio {ratio:.2g})", None
-    others = [c for c in cd.bifurcations if c.kind == b.kind and c is not b and c.x is not None
-              and cd.models[c.index] is hb]
-    ref_pts = [(bif.embed_doubled(c.x, n, hb.H) if b.kind == "period_doubling" else c.x, c.omega, c) for c in others]
+    others = [c for c in cd.bifurcations if c.kind == b.kind and c is not b and c.x is not None]
+
+    def ref_state(c):          # another bifurcation's orbit in the switched branch's representation
+        x = bif.pad_harmonics(c.x, n, (c.x.size // n - 1) // 2, hb.H)
+        return bif.embed_doubled(x, n, hb.H) if b.kind == "period_doubling" else x
+
+    ref_pts = [(ref_state(c), c.omega, c) for c in others]
     travelled = [0.0]
     prev = [un]
     arrived = []

@@ -329,3 +329,46 @@ def locate_in_omega(osc, test, wa, wb, y0, nu=1, symmetric=False):
     w = brentq(f, wa, wb, xtol=1e-13 * wb, rtol=1e-15)
     y, Phi, _ = fixed_point(osc, state["y"], w, nu, symmetric)
     return w, y, np.linalg.eigvals(Phi)
+
+
+def fold_newton(osc, y0, w0, nu=1, tol=1e-12, maxit=30):
+    """A fold of the periodic orbits: Newton on P(y; w) - y = 0, det(Phi(y; w) - I) = 0 in (y, w)
+    (Jacobian by central differences; started from an approximation, e.g. an HB fold's state at t = 0).
+    Returns (w, y)."""
+    z = np.concatenate([np.asarray(y0, float), [float(w0)]])
+
+    def G(z):
+        y, w = z[:2], z[2]
+        P, Phi, _ = osc.period_map(y, w, 0.0, nu)
+        return np.concatenate([P - y, [np.linalg.det(Phi - np.eye(2))]])
+
+    for _ in range(maxit):
+        g = G(z)
+        J = np.empty((3, 3))
+        for j in range(3):
+            h = 1e-7 * max(abs(z[j]), 1e-6 if j < 2 else 1.0)
+            e = np.zeros(3)
+            e[j] = h
+            J[:, j] = (G(z + e) - G(z - e)) / (2 * h)
+        dz = np.linalg.solve(J, -g)
+        z = z + dz
+        if abs(dz[2]) <= tol * abs(z[2]) and np.max(np.abs(dz[:2])) <= tol * max(np.max(np.abs(z[:2])), 1e-300):
+            return float(z[2]), z[:2]
+    raise RuntimeError(f"no fold near w = {w0}")
+
+
+def dense(osc, y0, w, ts, phi=0.0):
+    """x at the sorted instants ts (from 0) of the motion from y0 at t = 0: the pieces of one flow, each
+    evaluated in closed form at the instants inside it."""
+    ts = np.asarray(ts, float)
+    _, _, pieces = osc.flow(y0, w, phi, float(ts[-1]), record=True)
+    out = np.empty(ts.size)
+    y = np.array(y0, float)
+    for t0, t1, i in pieces:
+        sel = (ts >= t0) & (ts <= t1)
+        d = y - np.array(osc._particular(i, w, phi, t0))
+        if np.any(sel):
+            out[sel] = osc._x(i, w, phi, t0, d, ts[sel])
+        E = osc.expA(i, t1 - t0)
+        y = np.array(osc._particular(i, w, phi, t1)) + E @ d
+    return out
