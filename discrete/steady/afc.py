@@ -84,6 +84,7 @@ class AFCResult:
     secondary: list = field(default_factory=list)         # AFCResults of switched branches
     warnings: list = field(default_factory=list)
     origin: str = ""                                      # a secondary branch: where it was born
+    peak_point: tuple | None = None                       # HB: the maximum located along the branch
 
     @property
     def z(self):
@@ -117,6 +118,10 @@ class AFCResult:
         return out
 
     def peak(self):
+        """(omega, response) of the largest response: the located maximum along the branch (HB) if there
+        is one, else the largest point."""
+        if self.peak_point is not None:
+            return self.peak_point
         i = int(np.nanargmax(self.response))
         return float(self.omega[i]), float(self.response[i])
 
@@ -341,7 +346,8 @@ def _hb_result(sm: SteadyModel, models, segs, scale, locate: bool) -> AFCResult:
                     extra={"steps_rejected": sum(s.br.steps_rejected for s in segs), "_data": cd},
                     states=cd.states, critical=np.array(crit), multipliers=cd.mus, bifurcations=bifs,
                     truncation=np.array(cd.estimate), truncation_tol=cfg.truncation_tol,
-                    harmonics=Hs if (cfg.adaptive or Hs.min() != Hs.max()) else None, warnings=list(cd.warnings))
+                    harmonics=Hs if (cfg.adaptive or Hs.min() != Hs.max()) else None, warnings=list(cd.warnings),
+                    peak_point=cd.peak)
     if res.truncation_ok() is False:
         res.warnings.append(res.truncation_line())
     return res

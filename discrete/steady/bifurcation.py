@@ -52,6 +52,7 @@ class Bifurcation:
     x: np.ndarray | None = field(default=None, repr=False)
     note: str = ""
     harmonics: int | None = None        # HB: the harmonics it was located with
+    model: object = field(default=None, repr=False, compare=False)   # HB: the model of x
     check: tuple = (None, None)         # HB: (omega re-located with more harmonics, those harmonics)
 
     def to_dict(self) -> dict:

@@ -109,7 +109,8 @@ def _land(fun, xa, wa, xb, wb, wt, xs, tol, maxit, h):
 
 def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_max=0.1, max_steps=2000,
               tol=1e-9, maxit=12, w_bounds=None, start_converged=False, callback=None, orientation=None,
-              transition=None, stop_at_transition=False, stop_if=None, reuse_jacobian=False) -> Branch:
+              transition=None, stop_at_transition=False, stop_if=None, reuse_jacobian=False,
+              early_stop=False) -> Branch:
     """Follow the branch from (x0, w0) (corrected at fixed w0 first) towards ``w_stop``; it ends exactly
     at ``w_stop`` (landed, ``completed``) or says where and why it stopped (module docstring).
     ``orientation``: a direction in the scaled variables ``[x / xscale, w / wscale]`` that the first
@@ -119,7 +120,9 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     end it (``stop = "stop_if"``) after an accepted point for which it holds -- the caller resumes the
     branch, e.g. with the variables rescaled to the new orbit.  ``reuse_jacobian``: the tangent at a new
     point from the corrector's last bordered matrix (one evaluation less per point; the Jacobian is
-    taken one Newton step before convergence, i.e. within the tolerance of the point)."""
+    taken one Newton step before convergence, i.e. within the tolerance of the point).  ``early_stop``:
+    the corrector stops when quadratic convergence predicts its next step far below the tolerance (one
+    evaluation less per point; the point is then accurate to ~tol^2/|step| instead of to rounding)."""
     xs = np.asarray(xscale, float)
     direction = 1.0 if w_stop >= w0 else -1.0
     lo, hi = w_bounds if w_bounds is not None else (min(w0, w_stop), max(w0, w_stop))
@@ -148,6 +151,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         iteration before convergence, where the step was already below the tolerance)."""
         uu = up.copy()
         ww = uu[n] * wscale
+        last = np.inf
         for it in range(1, maxit + 1):
             xx, ww = uu[:n] * xs, uu[n] * wscale
             R, Jx, Jw = fun(xx, ww)
@@ -160,8 +164,13 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             uu = uu + du
             if not np.all(np.isfinite(uu)):
                 raise _StepFailure(f"the corrector diverged near omega = {ww:.6g}")
-            if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(uu))):
+            big = np.max(np.abs(du))
+            lim = tol * max(1.0, np.max(np.abs(uu)))
+            # converged: this step below the tolerance, or (early_stop) quadratic convergence predicting the
+            # next one far below it (|du_k| <= 0.1 |du_k-1| and |du_k|^2 / |du_k-1| <= tol / 10)
+            if big <= lim or (early_stop and it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
                 return uu, it, A
+            last = big
         raise _StepFailure(f"the corrector did not converge in {maxit} iterations near omega = {ww:.6g}")
 
     def tangent_from(A, prev):
@@ -314,6 +323,7 @@ def locate_fold(fun, x0, w0, t0, xscale, wscale, tol=1e-12, maxit=12):
     c = np.asarray(t0, float)[:n].copy()
     c /= max(np.linalg.norm(c), 1e-300)
     b = c.copy()
+    last = np.inf
     for it in range(1, maxit + 1):
         R, Jx, Jw = fun(x, w)
         Js = Jx * xs[None, :]
@@ -344,8 +354,12 @@ def locate_fold(fun, x0, w0, t0, xscale, wscale, tol=1e-12, maxit=12):
         w = w + du[n] * wscale
         nv, nw = np.linalg.norm(v), np.linalg.norm(wl)
         c, b = v / max(nv, 1e-300), wl / max(nw, 1e-300)
-        if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(x / xs))):
+        big = np.max(np.abs(du))
+        lim = tol * max(1.0, np.max(np.abs(x / xs)))
+        # converged, or quadratic convergence predicting the next step far below the tolerance
+        if big <= lim or (it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
             return x, w, it
+        last = big
     raise SolverError(f"the fold near omega = {w0:.6g} was not located by the extended Newton system")
 
 

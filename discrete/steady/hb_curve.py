@@ -100,7 +100,7 @@ def continue_branch(sm, models, hb, X0, w0, w_stop, scale, progress=None, orient
 
         br = arclength(residual_function(hb), x0, wa, w_stop, xscale=xs, wscale=wscale, ds=ds, ds_max=cfg.ds_max,
                        ds_min=cfg.ds_min, max_steps=steps_left, start_converged=True, w_bounds=(lo, hi),
-                       orientation=orient, reuse_jacobian=True,
+                       orientation=orient, reuse_jacobian=True, early_stop=True,
                        callback=_report(progress, skip_first=bool(segs)),
                        stop_if=stop if (adaptive or stop_if is not None) else None)
         segs.append(Segment(hb, br, xs))
@@ -277,6 +277,7 @@ class CurveData:
         self.mus, self.estimate, self.tangents, self.bp_sign = [], [], [], []
         self.folds, self.bifurcations, self.warnings, self.dropped = [], [], [], []
         self.index = []            # (segment, local index) per point
+        self.peak = None           # (omega, response) of the maximum located along the branch
 
 
 def analyse(sm, models, segs, scale, stability=True, locate=True) -> CurveData:
@@ -307,9 +308,28 @@ def analyse(sm, models, segs, scale, stability=True, locate=True) -> CurveData:
         for i, _, _ in br.folds:
             _add_fold(sm, models, cd, seg, i, scale, wscale, stability, offset + i)
     _fold_jumps(cd, cfg)
+    cd.peak = locate_peak(sm, cd, scale, wscale)
     if locate:
         _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability)
+    if stability:
+        _critical_multipliers(cd)
     return cd
+
+
+def _critical_multipliers(cd):
+    """The critical multiplier of every located bifurcation: the Floquet multipliers of their orbits, one
+    batch per HB model."""
+    groups = {}
+    for b in cd.bifurcations:
+        if b.x is not None and getattr(b, "model", None) is not None:
+            groups.setdefault(id(b.model), (b.model, []))[1].append(b)
+    for hb, bs in groups.values():
+        try:
+            mus = floquet_hb_batch(hb, [b.x for b in bs], [b.omega for b in bs])
+        except (SolverError, np.linalg.LinAlgError, ValueError):
+            continue
+        for b, mu in zip(bs, mus):
+            b.multiplier = bif.critical(mu, b.kind)
 
 
 def _add_fold(sm, models, cd, seg, i, scale, wscale, stability, index=-1):
@@ -342,18 +362,59 @@ def _add_fold(sm, models, cd, seg, i, scale, wscale, stability, index=-1):
         cd.warnings.append(f"the fold at omega = {w:.8g} rad/s moves by {abs(wc - w):.3g} rad/s ({est:.2g} relative) "
                            f"from H = {H} to {Hc} harmonics: above truncation_tol = {cfg.truncation_tol:g}"
                            + ("" if cfg.adaptive else " (set adaptive = true or raise harmonics)"))
-    mu = None
-    if stability:
-        try:
-            mu = bif.critical(floquet_hb(hb, x, w), "fold")
-        except (SolverError, np.linalg.LinAlgError, ValueError):
-            mu = None
     cd.folds.append(fold)
-    b = bif.Bifurcation("fold", float(w), resp, mu, "tangent d omega / ds (extended Newton)", bool(ok), index, x)
+    b = bif.Bifurcation("fold", float(w), resp, None, "tangent d omega / ds (extended Newton)", bool(ok), index, x)
+    b.model = hb
     b.harmonics, b.check = int(H), (wc, Hc)
     if wc is not None:
         b.note = f"{wc:.8g} rad/s with {Hc} harmonics (change {est:.2g} relative)"
     cd.bifurcations.append(b)
+
+
+def locate_peak(sm, cd, scale, wscale, iterations: int = 3):
+    """The maximum of the response along the branch: successive parabolic interpolation in the scaled arc
+    length through the largest point and its neighbours, each trial point corrected on the plane across
+    the branch (regular at a fold next to the peak) and measured exactly.  None if the largest point is
+    an end of the branch or next to a change of harmonics."""
+    r = np.asarray(cd.response, float)
+    if r.size < 3:
+        return None
+    i = int(np.nanargmax(r))
+    if i == 0 or i == r.size - 1 or not (cd.models[i - 1] is cd.models[i] is cd.models[i + 1]):
+        return None
+    hb = cd.models[i]
+    fun = residual_function(hb)
+    xs = np.full(cd.states[i].size, scale)
+    U = [np.concatenate([cd.states[j] / xs, [cd.omega[j] / wscale]]) for j in (i - 1, i, i + 1)]
+    pts = [(-np.linalg.norm(U[1] - U[0]), U[0], r[i - 1]), (0.0, U[1], r[i]), (np.linalg.norm(U[2] - U[1]), U[2], r[i + 1])]
+    best = pts[1]
+    for _ in range(iterations):
+        (s0, u0, f0), (s1, u1, f1), (s2, u2, f2) = sorted(pts, key=lambda p: p[0])
+        den = (s1 - s0) * (f1 - f2) - (s1 - s2) * (f1 - f0)
+        if den == 0:
+            break
+        sv = s1 - 0.5 * ((s1 - s0) ** 2 * (f1 - f2) - (s1 - s2) ** 2 * (f1 - f0)) / den
+        if not s0 < sv < s2 or abs(sv - s1) < 1e-6 * (s2 - s0):      # (the value's error ~ its square)
+            break
+        # the quadratic (Lagrange) curve through the three points at sv, corrected across the branch
+        L0 = (sv - s1) * (sv - s2) / ((s0 - s1) * (s0 - s2))
+        L1 = (sv - s0) * (sv - s2) / ((s1 - s0) * (s1 - s2))
+        L2 = (sv - s0) * (sv - s1) / ((s2 - s0) * (s2 - s1))
+        up = L0 * u0 + L1 * u1 + L2 * u2
+        d = u2 - u0
+        d /= np.linalg.norm(d)
+        try:
+            x, w, _ = correct_on_plane(fun, up[:-1] * xs, up[-1] * wscale, d, xs, wscale)
+        except (SolverError, np.linalg.LinAlgError):
+            break
+        f = float(measure_orbits(sm, hb, [x], [w])[0])
+        new = (sv, np.concatenate([x / xs, [w / wscale]]), f)
+        pts = sorted([(s0, u0, f0), (s1, u1, f1), (s2, u2, f2), new], key=lambda p: p[2])[1:]
+        if f > best[2]:
+            best = new
+    if best is pts[1] and best[0] == 0.0:
+        return None
+    return float(best[1][-1] * wscale), float(best[2])
 
 
 def _fold_jumps(cd, cfg):
@@ -402,6 +463,25 @@ def locate_between(hb, kind, test, xa, wa, xb, wb, scale, wscale, ta=None, tb=No
         sig = fa / (fa - fb) if fa != fb and fa * fb < 0 else 0.5
         x, w = xa + sig * (xb - xa), wa + sig * (wb - wa)
     return x, w, ok
+
+
+def _bracket(hb, kind, test, cd, i, scale, wscale):
+    """Branch points (a, b) around interval i between which the test function, evaluated at the points
+    themselves, changes sign (the continuation's determinant sign comes from the corrector's last
+    Jacobian, one iterate before its point: next to a branch point it may flip one interval early)."""
+    n = len(cd.omega)
+    fun = residual_function(hb)
+    for a, b in ((i, i + 1), (i - 1, i + 1), (i, i + 2), (i - 1, i + 2)):
+        if a < 0 or b >= n or not all(cd.models[j] is hb for j in range(a, b + 1)):
+            continue
+        xs = np.full(cd.states[a].size, scale)
+        ua = np.concatenate([cd.states[a] / xs, [cd.omega[a] / wscale]])
+        ub = np.concatenate([cd.states[b] / xs, [cd.omega[b] / wscale]])
+        d = (ub - ua) / max(np.linalg.norm(ub - ua), 1e-300)
+        psi = _psi(hb, kind, test, fun, cd.states[a], cd.omega[a], d, xs, wscale)
+        if psi(cd.states[a], cd.omega[a]) * psi(cd.states[b], cd.omega[b]) < 0:
+            return a, b
+    return i, i + 1
 
 
 def check_between(sm, models, hb, kind, test, states, omegas, i, scale, wscale):
@@ -456,8 +536,10 @@ def _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability):
         if cd.models[i] is not cd.models[i + 1]:
             continue                      # across a change of harmonics: the test values are not comparable
         hb = cd.models[i]
-        x, w, ok = locate_between(hb, kind, test, cd.states[i], cd.omega[i], cd.states[i + 1], cd.omega[i + 1],
-                                  scale, wscale, cd.tangents[i], cd.tangents[i + 1])
+        a, b_ = _bracket(hb, kind, test, cd, i, scale, wscale)
+        x, w, ok = locate_between(hb, kind, test, cd.states[a], cd.omega[a], cd.states[b_], cd.omega[b_],
+                                  scale, wscale, cd.tangents[a] if b_ == a + 1 else None,
+                                  cd.tangents[b_] if b_ == a + 1 else None)
         wc, Hc, xc = check_between(sm, models, hb, kind, test, cd.states, cd.omega, i, scale, wscale) if ok \
             else (None, None, None)
         states = cd.states
@@ -468,14 +550,9 @@ def _locate_bifurcations(sm, models, cd, segs, scale, wscale, stability):
             states = [bif.pad_harmonics(s_, n, H0, Hc) for s_ in states]
             x, w = xc, wc
             wc, Hc, xc = check_between(sm, models, hb, kind, test, states, cd.omega, i, scale, wscale)
-        mu = None
-        if stability:
-            try:
-                mu = bif.critical(floquet_hb(hb, x, w), kind)
-            except (SolverError, np.linalg.LinAlgError, ValueError):
-                mu = None
         resp = float(measure_orbits(sm, hb, [x], [w])[0])
-        b = bif.Bifurcation(kind, float(w), resp, mu, test, bool(ok), i, x)
+        b = bif.Bifurcation(kind, float(w), resp, None, test, bool(ok), i, x)
+        b.model = hb
         b.harmonics = hb.H
         b.check = (wc, Hc)
         if wc is not None:

@@ -63,7 +63,7 @@ def estimates(hb, Xs, omegas, direction) -> np.ndarray:
         Z = Kb[:, None] - (kW ** 2)[..., None, None] * s.M + 1j * kW[..., None, None] * Cb[:, None]
         dr = np.linalg.solve(Z, f[..., None])[..., 0] @ g          # (P, H)
     r = Q.transpose(0, 2, 1) @ g                                   # (P, m): the response quantity's series
-    half = np.array([_half_range(x) for x in r])
+    half = _half_ranges(r)
     amp = np.hypot(r[:, 1::2], r[:, 2::2]).sum(axis=1)
     scale = np.where(half > 0, half, np.maximum(np.maximum(amp, np.abs(r[:, 0])), 1e-300))
     return np.sum(np.abs(dr), axis=1) / scale
@@ -107,13 +107,13 @@ def _high_harmonics(hb, Q, omegas, J):
     return out, ms, mv
 
 
-def _half_range(r, points: int = 256) -> float:
-    """Half peak-to-peak of the real series r on a grid (a scale: grid accuracy suffices)."""
-    H = (r.size - 1) // 2
+def _half_ranges(r, points: int = 256):
+    """Half peak-to-peak of the real series r (P, 2H+1) on a grid (a scale: grid accuracy suffices)."""
+    H = (r.shape[1] - 1) // 2
     th = 2 * np.pi * np.arange(points) / points
-    kt = np.multiply.outer(th, np.arange(1, H + 1))
-    y = r[0] + np.cos(kt) @ r[1::2] + np.sin(kt) @ r[2::2]
-    return 0.5 * float(np.max(y) - np.min(y))
+    kt = np.multiply.outer(np.arange(1, H + 1), th)
+    y = r[:, 1::2] @ np.cos(kt) + r[:, 2::2] @ np.sin(kt)
+    return 0.5 * (np.max(y, axis=1) - np.min(y, axis=1))
 
 
 def response_direction(sm) -> np.ndarray:
