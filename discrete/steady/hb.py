@@ -110,6 +110,7 @@ class HBModel:
         self._rough = [e for e, (el, law) in enumerate(zip(self.s.elements, laws))
                        if law is None and el.smoothness < 2] if self.N_fine > self.N else []
         self.fine_evaluations = 0
+        self._go_fine = {}
         pw = []
         for e, law in enumerate(laws):
             if law is None:
@@ -309,7 +310,13 @@ class HBModel:
         if jac:
             spec_s = np.zeros((nel, m), complex)
             spec_v = np.zeros((nel, m), complex)
-        smp = self._sampled
+        # a rough law found not exact on the HB grid at the last evaluation goes to the dense grid directly
+        # (and back to the HB grid once its dense samples show it exact)
+        fine_now = [e for e in self._rough if self._go_fine.get(e)]
+        smp = [e for e in self._sampled if e not in fine_now] if fine_now else self._sampled
+        for e in fine_now:
+            exact = self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
+            self._go_fine[e] = not exact
         if smp:
             F = np.empty((len(smp), self.N))
             dFs, dFv = np.empty_like(F), np.empty_like(F)
@@ -329,8 +336,9 @@ class HBModel:
                 sp = self._dft(np.concatenate([dFs, dFv]))
                 spec_s[smp], spec_v[smp] = sp[:len(smp)], sp[len(smp):]
             for e in self._rough:          # not exact on this grid: the dense grid for this element
-                if not s.elements[e].sampled_exactly(S[e], Sd[e], s.eps):
+                if e in smp and not s.elements[e].sampled_exactly(S[e], Sd[e], s.eps):
                     self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
+                    self._go_fine[e] = True
         for e, proj, sa, sda, sdb in self._pw:
             Cs = A[e] + sa
             AD = A[e] @ self.D
@@ -345,8 +353,9 @@ class HBModel:
                     jumps[e] = out["jump"]
         return Fp, spec_s, spec_v, jumps, Fw
 
-    def _fine_element(self, e, Ae, omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v):
-        """Element e's projections, spectra (scaled to the HB grid's sums) and dF/domega from the dense grid."""
+    def _fine_element(self, e, Ae, omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v) -> bool:
+        """Element e's projections, spectra (scaled to the HB grid's sums) and dF/domega from the dense grid;
+        returns whether its law is exact on samples there (it would be on the HB grid too)."""
         s = self.s
         Nf = self.N_fine
         self.fine_evaluations += 1
@@ -366,6 +375,7 @@ class HBModel:
             scale = self.N / Nf
             spec_s[e] = np.fft.rfft(dFs)[:self.m] * scale
             spec_v[e] = np.fft.rfft(dFv)[:self.m] * scale
+        return s.elements[e].sampled_exactly(S, Sd, s.eps)
 
     def _evaluate_piecewise(self, Q, QD, QDD, R, omega, jac, dw):
         """:meth:`evaluate_residual` with exactly integrated elements (R: the linear part and forcing)."""
