@@ -49,7 +49,8 @@ def rows(outcomes: list[CaseOutcome]) -> list[list[str]]:
 HEAD = ["case", "source", "quantity", "expected", "computed", "rel.err", "tol", ""]
 
 
-def print_table(outcomes: list[CaseOutcome], out=sys.stdout) -> None:
+def print_table(outcomes: list[CaseOutcome], out=None) -> None:
+    out = sys.stdout if out is None else out    # resolved at the call (the stream of the import may be closed)
     table = rows(outcomes)
     widths = [min(max(len(r[i]) for r in table + [HEAD]), 46) for i in range(len(HEAD))]
     line = "  ".join(h.ljust(w) for h, w in zip(HEAD, widths))

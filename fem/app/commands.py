@@ -112,7 +112,7 @@ def forced(args) -> int:
         from ..output.figures import plot_afc, plot_frf
 
         if steady:
-            plot_afc(res, args.plot)
+            plot_afc(res, args.plot, title=study.title or None)
             print(f"wrote {args.plot}")
         else:
             print(f"wrote {plot_frf(res, args.plot, study.title)}")

@@ -1,4 +1,6 @@
-"""Text tables printed by the command line (they take results, never recompute them)."""
+"""Text tables printed by the command line (they take results, never recompute them).  ``out``: a text
+stream, default the ``sys.stdout`` of the moment of the call (not of the import: a test harness or a
+caller may replace and close streams in between)."""
 from __future__ import annotations
 
 import sys
@@ -6,7 +8,8 @@ import sys
 import numpy as np
 
 
-def modal_table(study, res, out=sys.stdout) -> None:
+def modal_table(study, res, out=None) -> None:
+    out = sys.stdout if out is None else out
     if study.kind == "drive":
         print((study.title + "\n" if study.title else "") + res.table(), file=out)
         return
@@ -36,7 +39,8 @@ def dunkerley_line(bound: float, omega1: float) -> str:
             f"({100 * (bound / omega1 - 1):+.2f} %)")
 
 
-def forced_table(study, res, all_rows: bool = False, out=sys.stdout) -> None:
+def forced_table(study, res, all_rows: bool = False, out=None) -> None:
+    out = sys.stdout if out is None else out
     from discrete.steady import AFCResult
 
     if isinstance(res, AFCResult) or study.kind == "drive":
@@ -57,7 +61,8 @@ def forced_table(study, res, all_rows: bool = False, out=sys.stdout) -> None:
               file=out)
 
 
-def simulation_summary(title: str, d: dict, out=sys.stdout) -> None:
+def simulation_summary(title: str, d: dict, out=None) -> None:
+    out = sys.stdout if out is None else out
     counts = ", ".join(f"{n} {k}" for k, n in sorted(d.get("event_counts", {}).items()))
     print(f"{title}\nsimulated to t = {d.get('t_end')} ({d.get('method', '')}); {len(d.get('events', []))} events"
           + (f" ({counts})" if counts else "") + f"; period = {d.get('period')}; energy error = {d.get('energy_error')}",

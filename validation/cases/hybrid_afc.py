@@ -34,11 +34,18 @@ SRC_1DOF_ROD = "Den Hartog (1931) exact Coulomb + viscous oscillator of mode 1 r
 
 
 # ------------------------------------------------------------------ measurement helpers
-def extreme(t: np.ndarray, y: np.ndarray) -> float:
-    """Maximum of y refined by the parabola through the largest sample and its neighbours.  An event's
-    two records (before and after it) may carry times that differ in the last bits (the event time
-    computed twice); samples closer than 1e-6 of the stencil's width count as one instant, where the
-    extreme is the sample itself (a reversal: v = 0 there, and the acceleration jumps, so no parabola)."""
+def extreme(t: np.ndarray, y: np.ndarray, events=None) -> float:
+    """Maximum of y refined by the parabola through the largest sample and its neighbours.  With the
+    ``events`` times (switches of a law: stick-slip, contact), no parabola across one (the series is only
+    C^1 there, and a slip reversal is itself the extreme) and an event's two records count as one instant:
+    discrete.steady.measures.  Without them, an event's two records (before and after it) may carry times
+    that differ in the last bits (the event time computed twice); samples closer than 1e-6 of the
+    stencil's width count as one instant, where the extreme is the sample itself (a reversal: v = 0
+    there, and the acceleration jumps, so no parabola)."""
+    if events is not None:
+        from discrete.steady.measures import refined_sample_extremes
+
+        return refined_sample_extremes(t, y, events)[0]
     k = int(np.argmax(y))
     if k == 0 or k == y.size - 1 or min(t[k] - t[k - 1], t[k + 1] - t[k]) <= 1e-6 * (t[k + 1] - t[k - 1]):
         return float(y[k])
@@ -46,9 +53,9 @@ def extreme(t: np.ndarray, y: np.ndarray) -> float:
     return float(y[k]) if c[0] >= 0 else float(c[2] - c[1] ** 2 / (4 * c[0]))
 
 
-def half_range(t: np.ndarray, y: np.ndarray) -> float:
-    """Half peak-to-peak value (amplitude) with refined extremes."""
-    return 0.5 * (extreme(t, y) + extreme(t, -y))
+def half_range(t: np.ndarray, y: np.ndarray, events=None) -> float:
+    """Half peak-to-peak value (amplitude) with refined extremes (``events``: see :func:`extreme`)."""
+    return 0.5 * (extreme(t, y, events) + extreme(t, -y, events))
 
 
 def parabola_top(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -298,7 +305,8 @@ def rod_sim_amplitude(res, T: float, n: int = 5) -> tuple[float, float]:
     s = res.solver
     x = s.x[s.names.index("u@x=1")]
     last, prev = windows(s.t, T, n)
-    return half_range(s.t[last], x[last]), half_range(s.t[prev], x[prev])
+    ev = [e.t for e in res.events]
+    return half_range(s.t[last], x[last], ev), half_range(s.t[prev], x[prev], ev)
 
 
 def rod_omitted(S, mode, omega: float, P0: float, F: float, X: float, harmonics: int = 59) -> float:
@@ -364,7 +372,7 @@ def rod_checks() -> list:
             y0 = np.concatenate([res.solver.x[p.f, -1], res.solver.v[p.f, -1]])
             y, _ = sh.solve(y0, w, np.maximum(np.abs(y0), 1e-12))
             _, orb = sh.run(y, w, dense=True)
-            A_sh = half_range(orb.t, orb.x[p.f][i_tip])
+            A_sh = half_range(orb.t, orb.x[p.f][i_tip], [e.t for e in orb.events])
             kinds = [e.kind for e in orb.events]
             out.append(check(lab, SRC_SIM, "tip amplitude: exact shooting (events: " + ", ".join(kinds) + ")",
                              A, A_sh, 1e-6))
@@ -433,7 +441,7 @@ def rod_shooting_checks(doc: dict, r_hb) -> list:
         res, T = simulate_at(doc, w, 150)
         A, _ = rod_sim_amplitude(res, T)
         out.append(check(f"{name} z = {w / w1:.5f}", SRC_SIM, f"tip amplitude: shooting curve, {what}",
-                         A, half_range(orb.t, orb.x[p.f][i_tip]), 1e-6))
+                         A, half_range(orb.t, orb.x[p.f][i_tip], [e.t for e in orb.events]), 1e-6))
     wp, Ap, _ = parabola_top(r.omega, r.response * scale)
     wh, Ah, _ = parabola_top(r_hb.omega, r_hb.response * scale)
     out.append(check(name, "HB-15 curve (tolerance of (a): 1.5 %)", "peak tip amplitude of the shooting curve",

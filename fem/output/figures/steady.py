@@ -6,15 +6,12 @@ from pathlib import Path
 import numpy as np
 
 
-def plot_afc(result, path, ax=None, label=None) -> None:
-    """PNG of the curve: stable parts solid, unstable parts dashed red, folds marked."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+MARKERS = {"fold": ("o", "fold"), "branch_point": ("s", "branch point"), "period_doubling": ("^", "period doubling"),
+           "neimark_sacker": ("D", "Neimark-Sacker")}
 
-    own = ax is None
-    if own:
-        fig, ax = plt.subplots(figsize=(7, 4.5))
+
+def _curve(ax, result, label=None, color=None):
+    """The branch: stable parts solid, unstable dashed; its bifurcations marked by type.  Returns the colour."""
     x = result.z if result.omega_ref else result.omega
     y = result.response
     st = np.asarray(result.stable, bool)
@@ -24,22 +21,71 @@ def plot_afc(result, path, ax=None, label=None) -> None:
     for i in range(1, len(st)):
         if st[i] != st[i - 1]:
             yu[i - 1 if st[i - 1] else i] = y[i - 1 if st[i - 1] else i]
-    line, = ax.plot(x, ys, "-", lw=1.6, label=label or f"{result.method} (stable)")
-    ax.plot(x, yu, "--", color=line.get_color(), lw=1.2, alpha=0.9,
-            label=None if label else "unstable")
-    for f in result.folds:
-        fx = f["omega"] / result.omega_ref if result.omega_ref else f["omega"]
-        ax.plot([fx], [f["response"]], "o", ms=4, color=line.get_color(), mfc="none")
+    line, = ax.plot(x, ys, "-", lw=1.6, label=label or f"{result.method} (stable)", color=color)
+    c = line.get_color()
+    ax.plot(x, yu, "--", color=c, lw=1.2, alpha=0.9, label=None if label else "unstable")
+    bifs = getattr(result, "bifurcations", None) or [
+        type("F", (), {"kind": "fold", "omega": f["omega"], "response": f["response"]}) for f in result.folds]
+    for b in bifs:
+        bx = b.omega / result.omega_ref if result.omega_ref else b.omega
+        ax.plot([bx], [b.response], MARKERS[b.kind][0], ms=5, color=c, mfc="none", mew=1.3)
+    return c, {b.kind for b in bifs}
+
+
+def plot_afc(result, path, ax=None, label=None, title: str | None = None) -> None:
+    """PNG of the curve: stable parts solid, unstable parts dashed, bifurcations marked by type (fold o,
+    branch point square, period doubling triangle, Neimark-Sacker diamond), secondary (switched) branches
+    in their own colours; below, the HB truncation estimate per point against its tolerance."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    own = ax is None
+    est = getattr(result, "truncation", None)
+    strip = own and est is not None and np.size(est) > 0
+    if own:
+        if strip:
+            fig, (ax, ax2) = plt.subplots(2, 1, figsize=(7, 5.6), sharex=True,
+                                          gridspec_kw={"height_ratios": [3.2, 1.0]})
+        else:
+            fig, ax = plt.subplots(figsize=(7, 4.5))
+    _, kinds = _curve(ax, result, label)
+    for sec in getattr(result, "secondary", []) or []:
+        _, k2 = _curve(ax, sec, label=sec.origin.split(", back on")[0].replace(" rad/s", ""), color=None)
+        kinds |= k2
     bb = (result.extra or {}).get("backbone")
     if bb and bb.get("response"):
         bx = np.asarray(bb["omega_rad_s"]) / (result.omega_ref or 1.0)
         ax.plot(bx, bb["response"], "-.", color="0.35", lw=1.2,
                 label=f"backbone: nonlinear mode ({bb['method'].split(' (')[0]})")
+    for kind in ("fold", "branch_point", "period_doubling", "neimark_sacker"):
+        if kind in kinds:
+            ax.plot([], [], MARKERS[kind][0], color="0.3", mfc="none", label=MARKERS[kind][1])
     if own:
-        ax.set_xlabel("z = omega / omega_ref" if result.omega_ref else "omega, rad/s")
+        xlabel = "z = omega / omega_ref" if result.omega_ref else "omega, rad/s"
         ax.set_ylabel(result.response_label)
         ax.grid(alpha=0.3)
-        ax.legend()
+        ax.legend(fontsize=7, loc="upper left")
+        if title:
+            ax.set_title(title, fontsize=10)
+        if strip:
+            x = result.z if result.omega_ref else result.omega
+            e = np.asarray(est, float)
+            pos = e[e > 0]
+            floor = max(float(pos.min()) / 3 if pos.size else 1e-9, (result.truncation_tol or 1e-3) * 1e-6)
+            ax2.semilogy(x, np.maximum(e, floor), ".", ms=3, color="0.25",
+                         label="truncation estimate (0 shown at the floor)")
+            top = max(float(e.max()) if e.size else 0.0, result.truncation_tol or 0.0)
+            ax2.set_ylim(floor / 2, top * 4)
+            if result.truncation_tol:
+                ax2.axhline(result.truncation_tol, color="tab:red", lw=1.0, ls="--",
+                            label=f"tolerance {result.truncation_tol:g}")
+            ax2.set_ylabel("truncation\nestimate, -", fontsize=9)
+            ax2.set_xlabel(xlabel)
+            ax2.grid(alpha=0.3, which="both")
+            ax2.legend(fontsize=7, loc="upper right")
+        else:
+            ax.set_xlabel(xlabel)
         fig.tight_layout()
         Path(path).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=120)
