@@ -48,6 +48,7 @@ BUDGET_S = 600.0
 SCRIPTS: list[tuple[str, list[str], list[str], bool]] = [
     ("event_solver.py", [], [], True),
     ("stick_slip.py", [], [], True),
+    ("cli_simulate.py", [], [], True),
     ("hybrid.py", [], [], True),
     ("drives.py", [], [], True),
     ("modal_scaling.py", ["--quick"], [], True),

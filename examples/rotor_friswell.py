@@ -59,8 +59,11 @@ def main(out_dir: str | None = None, verbose: bool = True) -> dict:
     camp = campbell(damped, np.linspace(0.0, rpm(6000), 31), 6, orders=(1.0,))
     out["critical_speeds_rpm"] = [round(c.speed_rpm, 3) for c in camp.critical_speeds]
     out["critical_whirl"] = [c.whirl for c in camp.critical_speeds]
-    say("\ndamped rotor, 24 elements: synchronous critical speeds "
-        + ", ".join(f"{c.speed_rpm:.1f} rev/min ({c.whirl})" for c in camp.critical_speeds))
+    out["backward_crossings_rpm"] = [round(c.speed_rpm, 3) for c in camp.backward_crossings]
+    say("\ndamped rotor, 24 elements: synchronous critical speeds (forward whirl) "
+        + ", ".join(f"{c.speed_rpm:.1f} rev/min" for c in camp.critical_speeds)
+        + "; backward-whirl crossings (not excited by unbalance: isotropic bearings) "
+        + ", ".join(f"{c.speed_rpm:.1f}" for c in camp.backward_crossings) + " rev/min")
     op = (rpm(3000), rpm(3600))
     resp = unbalance_response(damped, [Unbalance(1.0, 1e-4)], np.linspace(rpm(200), rpm(6000), 300),
                               operating_range=op)
@@ -99,7 +102,8 @@ def main(out_dir: str | None = None, verbose: bool = True) -> dict:
 
         d = Path(out_dir)
         d.mkdir(parents=True, exist_ok=True)
-        plots.plot_campbell(camp, d / "rotor_campbell.png", title="Friswell 5.9.5 (damped bearings), 24 elements")
+        plots.plot_campbell(camp, d / "rotor_campbell.png", title="Friswell 5.9.5 (damped bearings), 24 elements",
+                            operating_range=op)
         plots.plot_bode(resp, d / "rotor_bode.png", probes=[1, 2], title="unbalance 1e-4 kg m at disc 2")
         plots.plot_polar(resp, d / "rotor_polar.png", probe=1)
         i = int(np.argmin(np.abs(resp.speeds_rad_s - peaks[0].speed_rad_s))) if peaks else 0

@@ -11,6 +11,7 @@ speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.roto
 """
 from __future__ import annotations
 
+import warnings
 from functools import cached_property
 from pathlib import Path
 
@@ -41,6 +42,7 @@ def steady_settings(table):
 
     return build(table)
 from .modelfile.load import kind_of
+from .modelfile.plausibility import Plausibility, PlausibilityWarning
 from .modelfile.schema.analysis import ForcedAnalysis, ModalAnalysis
 
 DEFAULT_MODES = 6
@@ -57,6 +59,15 @@ class Study:
         self.kind = kind_of(doc)
         self.path = path
         budget.check_document(doc, self.kind)
+        self.plausibility = getattr(doc, "__plausibility__", None) or Plausibility()
+        """Warnings on values likely in other units than SI or outside the model's theory (at load)."""
+        for w in self.plausibility.warnings:
+            warnings.warn(w, PlausibilityWarning, stacklevel=2)
+
+    @property
+    def model_warnings(self) -> list[str]:
+        """The plausibility warnings of the model file (listed first in every JSON ``warnings``)."""
+        return list(self.plausibility.warnings)
 
     @classmethod
     def load(cls, path) -> "Study":
@@ -125,8 +136,9 @@ class Study:
         self._need("rotor", what="a rotor")
         return assemble_rotor(build_rotor.rotor_model(self.doc))
 
-    def campbell(self, n_modes: int | None = None):
-        """Rotor files: the Campbell diagram of [campbell] with its critical speeds."""
+    def campbell(self, n_modes: int | None = None, progress=None):
+        """Rotor files: the Campbell diagram of [campbell] with its critical speeds
+        (``progress(done, total)`` after each solve: :func:`fem.rotor.campbell`)."""
         from .rotor import campbell
 
         self._need("rotor", what="drivefem campbell")
@@ -137,7 +149,7 @@ class Study:
         speeds = build_rotor.speed_grid(t, "[campbell]")
         tol = self.analysis.tolerance if self.analysis is not None else 1e-6
         return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
-                        critical=t.critical, tolerance=tol)
+                        critical=t.critical, tolerance=tol, progress=progress)
 
     def linear_system(self):
         """The linear part: FE assembled, lumped with gears eliminated, hybrid compiled."""
@@ -155,12 +167,48 @@ class Study:
     def _lumped_system(self):
         return self.lumped.linear_system()
 
-    def problem_spec(self, t_end: float | None = None):
+    def problem_spec(self, t_end: float | None = None, refuse: bool = True):
         """The nonsmooth problem without its forcing frequency fixed (lumped and hybrid)."""
         if self.kind == "lumped":
-            return build_lumped.problem_spec(self.doc, t_end)
+            return build_lumped.problem_spec(self.doc, t_end, refuse)
         self._need("hybrid", what="a nonsmooth problem")
         return self.compiled.spec()
+
+    # ------------------------------------------------------------ loads and named outputs (fem.loads)
+    linearisation = None
+    """What the last linear analysis did with each nonsmooth element (records; None: no element)."""
+
+    @cached_property
+    def time_loads(self):
+        """The load map of the time simulation (:class:`discrete.loads.DriveLoads`)."""
+        from .loads.drive import drive_loads
+
+        self._need("lumped", "hybrid", what="element loads")
+        return drive_loads(self)
+
+    @cached_property
+    def linear_model(self):
+        """The linear analyses' model: every nonsmooth element in its declared linear state
+        (:class:`fem.loads.drive.LinearModel`; lumped and hybrid files)."""
+        from .loads.drive import LinearModel, drive_loads
+
+        self._need("lumped", "hybrid", what="the linearised elements")
+        base = self.linear_system()
+        return LinearModel(self, base, drive_loads(self, linear=True, system=base))
+
+    def outputs(self, result):
+        """The named outputs of ``result`` (any analysis of this study): element loads, reactions, section
+        loads of FE shafts and rotors, [[output]] selections (:func:`fem.loads.study.outputs`; docs/outputs.md):
+        a :class:`fem.loads.analyses.NamedOutputs` over modes, frequencies or time, a dict along a [steady]
+        curve, or None where the analysis has none (drive files, Campbell diagrams, periodic responses)."""
+        from .loads.study import outputs
+
+        return outputs(self, result)
+
+    def steady_model_of(self, result):
+        """The steady model behind a [steady] curve computed by :meth:`forced` (built again if not kept)."""
+        sm = getattr(self, "_steady", None)
+        return sm[1] if sm is not None and sm[0] is result else self.steady_model()
 
     # ------------------------------------------------------------ analyses
     def modal_count(self, n_modes: int | None = None) -> int:
@@ -172,7 +220,8 @@ class Study:
             return n_modes
         if self.kind == "drive":
             return min(DEFAULT_MODES, 2 * self.drive.n)
-        return max(1, min(DEFAULT_MODES, self.linear_system().n_free))
+        system = self.linear_model.system if self.kind in ("lumped", "hybrid") else self.linear_system()
+        return max(1, min(DEFAULT_MODES, system.n_free))
 
     def modal(self, n_modes: int | None = None, shift: float | None = None):
         """Natural frequencies and mode shapes (drive files: by their representation)."""
@@ -193,7 +242,16 @@ class Study:
         tol = an.tolerance if isinstance(an, ModalAnalysis) else 1e-5
         if shift is None and isinstance(an, ModalAnalysis):
             shift = an.shift
-        result = modal_analysis(self.linear_system(), self.modal_count(n_modes), shift=shift, tolerance=tol)
+        extra = {}
+        if self.plausibility.units_suspect:       # not the mesh: the scales (a warning at load said which)
+            extra["precision_advice"] = ("likely cause: values in other units than SI (see the warnings on units "
+                                         "above), which put this model's scales far apart -- check them before "
+                                         "changing the mesh")
+        system = self.linear_system()
+        if self.kind in ("lumped", "hybrid"):
+            system = self.linear_model.system
+            self.linearisation = self.linear_model.records or None
+        result = modal_analysis(system, self.modal_count(n_modes), shift=shift, tolerance=tol, **extra)
         motors = [t.name or f"motor{i}" for i, t in enumerate(getattr(self.doc, "motor", None) or (), 1)]
         if motors:
             result.warnings.append(f"the motor(s) {', '.join(motors)} are not part of these undamped modes of the "
@@ -221,6 +279,7 @@ class Study:
                     from discrete.steady.nnm import afc_backbone
 
                     res.extra["backbone"] = afc_backbone(sm, res).to_dict()
+                self._steady = (res, sm)
                 return res
         if self.kind == "rotor":
             from .rotor import unbalance_response
@@ -241,6 +300,9 @@ class Study:
         from discrete.linear import harmonic_response
 
         system = self.linear_system()
+        if self.kind == "lumped":
+            system = self.linear_model.system
+            self.linearisation = self.linear_model.records or None
         if self.kind == "lumped" and getattr(self.doc, "motor", None):
             system = self._with_motors(system)
         spec = build_linear.forced_spec(self.doc, system)
@@ -251,9 +313,10 @@ class Study:
                                    force=spec.force if np.any(spec.force) else None, base_motion=spec.base_motion,
                                    damping=build_linear.damping(self.doc.damping), outputs=spec.outputs,
                                    method=spec.method, n_modes=spec.n_modes)
-        return harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
-                                 base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
-                                 outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
+        res = harmonic_response(system, spec.omegas, force=spec.force, force_omega2=spec.force_w2,
+                                base_motion=spec.base_motion, damping=build_linear.damping(self.doc.damping),
+                                outputs=spec.outputs, method=spec.method, n_modes=spec.n_modes)
+        return res
 
     def _with_motors(self, system):
         """The lumped linear system with every [[motor]]'s complex stiffness to ground along its coordinate
@@ -340,15 +403,6 @@ class Study:
             budget.check_count("[run_up]", "duration", estimate, budget.MAX_TIME_STEPS, note, spec.run.duration)
 
         return run_up(self.rotor, spec.run, spec.unbalances, spec.rubs, progress=progress, check_steps=check_steps)
-
-    def loads(self, result):
-        """Internal loads of ``result`` (an analysis of this study): section loads along the FE shaft or the
-        rotor and the reactions of supports, springs, drivers and bearings (:class:`fem.loads.study.StudyLoads`:
-        load shapes of modes, complex amplitudes of forced responses, time histories of hybrid runs); None
-        for lumped and drive files and nonlinear steady states (docs/loads.md)."""
-        from .loads.study import study_loads
-
-        return study_loads(self, result)
 
     def steady_model(self):
         """The steady-state model of [steady] (lumped and hybrid files)."""

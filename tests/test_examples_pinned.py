@@ -14,9 +14,10 @@ EXAMPLES = ROOT / "examples"
 CASES = ROOT / "validation" / "cases"
 
 PINNED = {
+    "geared_mesh.toml": ["loads-lumped-geared-mesh"],
     "ross_compressor.toml": ["rotor-ross-compressor"],
-    "rotor_friswell_damped.toml": ["loads-equilibrium-rotor"],
-    "rotor_compressor.toml": ["loads-equilibrium-rotor"],
+    "rotor_friswell_damped.toml": ["loads-fe-rotor-equilibrium"],
+    "rotor_compressor.toml": ["loads-fe-rotor-equilibrium"],
     "hybrid_afc_friction_rod.toml": ["hybrid_afc_friction_rod", "hybrid_afc_breakdown", "steady_condensed_hb",
                                      "hybrid_superelement_round_trip"],
     "hybrid_afc_vibro_impact.toml": ["hybrid_afc_vibro_impact", "hybrid_afc_breakdown", "steady_condensed_hb",
@@ -35,10 +36,10 @@ PINNED = {
     "discrete_ch8_relaxation.toml": ["discrete_ch8_relaxation", "discrete_ch8_critical_speed"],
     "discrete_coulomb_decay.toml": ["discrete_coulomb_decay"],
     "discrete_gap_backlash.toml": ["discrete_gap_exact", "discrete_gap_arctan"],
-    "discrete_seed000_stick_slip.toml": ["discrete_seed000_stick_slip"],
+    "discrete_seed000_stick_slip.toml": ["discrete_seed000_stick_slip", "loads-lumped-multipliers-and-reactions"],
     "discrete_seed004_variable_mass.toml": ["discrete_seed004_tables", "discrete_seed004_claims"],
     "discrete_seed004_weight_friction.toml": ["discrete_seed004_tables"],
-    "discrete_strand_spool.toml": ["discrete_one_sided_strand"],
+    "discrete_strand_spool.toml": ["discrete_one_sided_strand", "loads-lumped-gap-drive-modal"],
     "drive_continuum.toml": ["drives-forced"],
     "drive_forced.toml": ["drives-forced"],
     "drive_large_n.toml": ["drives-seeded-large-n"],
@@ -59,6 +60,7 @@ PINNED = {
     "torsion_shaft_disc.toml": ["torsion-end-disc"],
     "two_mass_chain.toml": ["lumped-two-mass-chain"],
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
+    "rotor_jeffcott_seal.toml": ["rotor-jeffcott-seal-cli"],
 }
 """Example file -> the validation cases that load it as their model."""
 

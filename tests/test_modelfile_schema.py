@@ -59,7 +59,8 @@ def test_schema_per_kind(kind):
 
 
 @pytest.mark.parametrize("mutate,pattern", [
-    (lambda d: d["analysis"].update(tolerance="abc"), r"tolerance = 'abc' .*a number > 0"),
+    (lambda d: d["analysis"].update(tolerance="abc"), r"tolerance = 'abc' .*a dimensionless number > 0 and < 1.*"
+                                                      r"a number followed by a unit"),        # strings are quantities
     (lambda d: d["analysis"].update(shift="abc"), r"shift = 'abc' .*a number"),
     (lambda d: d["analysis"].update(modes=2.7), r"modes = 2.7 .*an integer >= 1"),
     (lambda d: d["analysis"].update(modes=True), r"modes = True .*an integer"),

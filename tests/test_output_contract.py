@@ -36,12 +36,18 @@ def run(tmp_path, *argv):
                                        ("drive_regular.toml", "drive")])
 def test_modal_contract_for_every_kind(tmp_path, name, kind):
     rc, d = run(tmp_path, "modal", name)
-    assert rc == 0 and d["schema"] == "drivefem.modal" and d["version"] == 1 and d["kind"] == kind
+    assert rc == 0 and d["schema"] == "drivefem.modal" and d["version"] == 2 and d["kind"] == kind
     assert MODAL_KEYS <= set(d)
     n = d["n_modes"]
     for key in ("omega_rad_s", "frequencies_hz", "residuals", "rayleigh_rel_diff", "precision_bound", "reliable"):
         assert len(d[key]) == n, key
     assert d["mode_shapes"]
+    if kind == "drive":
+        assert "named_outputs" not in d
+    else:                   # one layout of the named outputs: description + one value per mode
+        assert d["named_outputs"] and isinstance(d["named_outputs_notes"], list)
+        for name, o in d["named_outputs"].items():
+            assert {"quantity", "unit", "source", "where"} <= set(o) and len(o["modes"]) == n, name
 
 
 @pytest.mark.parametrize("name,kind,steady", [("forced_torsion.toml", "fe", False), ("sdof_base_motion.toml", "lumped", False),
@@ -59,6 +65,12 @@ def test_forced_contract_outputs_by_frequencies(tmp_path, name, kind, steady):
         z = d["response"]
         assert len(z) == no and len(z[0]) == nf and set(z[0][0]) == {"re", "im"}
         assert abs(complex(z[0][0]["re"], z[0][0]["im"])) == pytest.approx(d["amplitude"][0][0])
+    if kind == "drive":
+        assert "named_outputs" not in d
+    else:                   # one layout: description + values over the frequencies (curve points)
+        for name, o in d["named_outputs"].items():
+            assert {"quantity", "unit", "source", "where"} <= set(o), name
+            assert len(o["amplitude"]) == nf, name
 
 
 @pytest.mark.parametrize("name", ["discrete_coulomb_decay.toml", "hybrid_bar_wall.toml"])

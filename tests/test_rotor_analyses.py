@@ -100,11 +100,26 @@ def test_critical_speeds_roots_equal_linear_eigenproblem():
     rs = assemble_rotor(friswell(6, kzz=0.7e6))
     camp = campbell(rs, np.linspace(0.0, 400.0, 11), 6, orders=(1.0, 0.5))
     for k in (1.0, 0.5):
-        roots = np.sort([c.speed_rad_s for c in camp.critical_speeds if c.order == k])
+        roots = np.sort([c.speed_rad_s for c in camp.crossings if c.order == k])
         lin = undamped_critical_speeds(rs, 8, order=k).speeds_rad_s
         lin = lin[lin <= 400.0]
         assert roots.size == lin.size > 0
         np.testing.assert_allclose(roots, lin, rtol=1e-8)
+
+
+def test_overdamped_modes_have_no_critical_speed_at_rest():
+    """Heavily damped bearings: four bearing modes are real (overdamped) at rest; their omega_d = 0
+    meets omega = Omega at the origin, which is no critical speed.  The crossings of the modes that
+    oscillate are unchanged (roots of omega_d(Omega) = Omega, checked against the diagram)."""
+    camp = campbell(friswell(6, cyy=2e5, czz=2e5), np.linspace(0.0, 600.0, 13), 8)
+    assert np.sum(camp.omega_damped_rad_s[0] == 0.0) == 4            # non-oscillating at rest
+    assert all(c.speed_rad_s > 0 and np.isfinite(c.log_decrement) for c in camp.crossings)
+    assert len(camp.crossings) == 4                                   # forward and backward crossings
+    assert len(camp.critical_speeds) == 2 and {c.whirl for c in camp.critical_speeds} == {"forward"}
+    for c in camp.crossings:
+        assert c.frequency_rad_s == pytest.approx(c.speed_rad_s, rel=1e-9)
+        w = np.interp(c.speed_rad_s, camp.speeds_rad_s, camp.omega_damped_rad_s[:, c.mode])
+        assert w == pytest.approx(c.speed_rad_s, rel=0.02)                # the grid's linear interpolation
 
 
 def test_critical_speed_map_limits():

@@ -67,9 +67,12 @@ def test_campbell_json_png_csv(tmp_path):
     assert d["schema"] == "drivefem.campbell" and d["kind"] == "rotor"
     assert len(d["omega_rad_s"]) == 6 and len(d["omega_rad_s"][0]) == len(d["speeds_rad_s"]) == 31
     crit = [c for c in d["critical_speeds"] if c["order"] == 1]
-    # every root satisfies omega = Omega (Brent's method), forward and backward of the first pair
-    assert all(abs(c["frequency_rad_s"] - c["speed_rad_s"]) < 1e-6 * c["speed_rad_s"] for c in crit)
-    assert {c["whirl"] for c in crit[:2]} == {"forward", "backward"}
+    back = d["backward_crossings"]
+    # every root satisfies omega = Omega (Brent's method); the critical speeds are the forward crossings,
+    # the backward ones are listed apart (isotropic bearings: unbalance does not excite them)
+    assert all(abs(c["frequency_rad_s"] - c["speed_rad_s"]) < 1e-6 * c["speed_rad_s"] for c in crit + back)
+    assert {c["whirl"] for c in crit} == {"forward"} and {c["whirl"] for c in back} == {"backward"}
+    assert d["isotropic_supports"] is True and crit[0]["speed_rpm"] == pytest.approx(835.7, abs=0.05)
     assert png.stat().st_size > 10_000 and csv.read_text().count("\n") == 32
 
 
@@ -83,7 +86,10 @@ def test_forced_unbalance_response_contract(tmp_path):
     assert d["omega_rad_s"][0] == pytest.approx(200 * np.pi / 30)
     first = min((p for p in d["peaks"] if p["probe"] == 0), key=lambda p: p["speed_rad_s"])
     assert first["amplification_factor"] > 2.5 and first["passes"] is True
-    assert csv.read_text().splitlines()[0].startswith("speed_rpm,speed_rad_s,major@x=0.5 amplitude")
+    assert csv.read_text().splitlines()[0].startswith("speed_rpm,speed_rad_s,disc 1.major amplitude")   # the file's names
+    assert d["outputs"] == ["disc 1.major", "disc 2.major"]
+    assert {n for n, o in d["named_outputs"].items() if o["source"] == "bearing"} == \
+        {f"bearing[{i}] x={x}.force_{c}" for i, x in ((1, "0"), (2, "1.5")) for c in "yz"}
 
 
 def test_compressor_speed_dependent_bearings_and_seal(tmp_path):
@@ -92,6 +98,7 @@ def test_compressor_speed_dependent_bearings_and_seal(tmp_path):
     d = json.loads(j.read_text())
     assert min(min(c) for c in d["log_decrement"]) > 0           # stable to 13000 rev/min
     assert {c["order"] for c in d["critical_speeds"]} == {1.0, 2.0}
+    assert d["isotropic_supports"] is False and d["backward_crossings"]        # anisotropic bearings
 
 
 # ------------------------------------------------------------------ bad input

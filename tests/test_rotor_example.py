@@ -35,8 +35,9 @@ def test_variants(numbers):
 
 
 def test_damped_rotor_reports(numbers):
-    assert numbers["critical_speeds_rpm"][:4] == pytest.approx([830.8, 835.7, 2615.5, 2979.2], abs=0.05)
-    assert numbers["critical_whirl"][:2] == ["backward", "forward"]
+    assert numbers["critical_speeds_rpm"][:2] == pytest.approx([835.7, 2979.2], abs=0.05)
+    assert set(numbers["critical_whirl"]) == {"forward"}
+    assert numbers["backward_crossings_rpm"][:2] == pytest.approx([830.8, 2615.5], abs=0.05)
     first = numbers["peaks"][0]
     assert first["speed_rpm"] == pytest.approx(839.3, abs=0.05)
     assert first["AF"] == pytest.approx(9.58, abs=0.01) and first["passes"] is True

@@ -222,17 +222,26 @@ def _system(K, M):
     return LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), dof_field=np.array(["x"] * K.shape[0]))
 
 
-def test_two_seeds_on_one_mode_are_refused_not_returned():
-    """Seeds [l1, l1, l3, l4] for the lowest 3: a duplicated mode plus a missed one passes a
-    Sylvester count, so independence is checked first; modal_analysis falls back to Lanczos."""
+def test_two_seeds_on_one_mode_are_refused_or_resolved_never_returned():
+    """Seeds [l1, l1, l3, l4] for the lowest 3: a duplicated mode plus a missed one would pass a
+    Sylvester count, so independence is checked first. Whether the Rayleigh-Ritz step and the shifts
+    moved to the Ritz values separate the two rows (and find l2) depends on the rounding of the BLAS
+    kernels (they do on an AMD EPYC, not on the machines this test was written on): the solver either
+    refuses or returns the true lowest 3, never the duplicated mode. modal_analysis gives the true ones."""
     rng = np.random.default_rng(5)
     K, M = _chain(40, rng)
     lam = sla.eigh(K, M, eigvals_only=True)
     seeds = [lam[0] * (1 + 1e-4), lam[0] * (1 + 2e-4), lam[2] * (1 + 1e-4), lam[3] * (1 + 1e-4)]
-    with pytest.raises(SolverError):
-        seeded_eigenpairs(sp.csr_matrix(K), sp.csr_matrix(M), seeds, 3)
+    try:
+        sol = seeded_eigenpairs(sp.csr_matrix(K), sp.csr_matrix(M), seeds, 3)
+        refused = False
+    except SolverError:
+        refused = True
+    else:
+        assert np.allclose(sol.eigenvalues, lam[:3], rtol=1e-10) and sol.count == 3
     res = modal_analysis(_system(K, M), 3, seeds=seeds)
-    assert np.allclose(res.eigenvalues, lam[:3], rtol=1e-10) and any("seeded solver not used" in w for w in res.warnings)
+    assert np.allclose(res.eigenvalues, lam[:3], rtol=1e-10)
+    assert any("seeded solver not used" in w for w in res.warnings) == refused
 
 
 def test_star_with_a_one_dof_core():

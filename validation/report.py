@@ -50,7 +50,7 @@ HEAD = ["case", "source", "quantity", "expected", "computed", "rel.err", "tol", 
 
 
 def print_table(outcomes: list[CaseOutcome], out=None) -> None:
-    out = sys.stdout if out is None else out    # resolved at the call (the stream of the import may be closed)
+    out = sys.stdout if out is None else out      # bound at call time (a captured stream may close)
     table = rows(outcomes)
     widths = [min(max(len(r[i]) for r in table + [HEAD]), 46) for i in range(len(HEAD))]
     line = "  ".join(h.ljust(w) for h, w in zip(HEAD, widths))

@@ -27,6 +27,22 @@ def _csr_rows(A: sp.csr_matrix) -> np.ndarray:
     return np.repeat(np.arange(A.shape[0], dtype=np.int64), np.diff(A.indptr))
 
 
+def same_array(a: np.ndarray, b: np.ndarray) -> bool:
+    """``a`` and ``b`` are the same memory (one object, or views of one buffer with the same
+    layout): scipy's CSR constructor wraps the index arrays it is given in new views, so pattern
+    caches compare buffers, not objects.  A cache that compares with a held array keeps that
+    buffer alive, so an equal address cannot belong to a later allocation."""
+    return a is b or (a.dtype == b.dtype and a.shape == b.shape and a.strides == b.strides
+                      and a.__array_interface__["data"][0] == b.__array_interface__["data"][0])
+
+
+def pattern_key(A: sp.csr_matrix) -> tuple:
+    """Dictionary key of a CSR matrix's index arrays by their buffers (see :func:`same_array`);
+    a cache holds the arrays with the key and checks them with :func:`same_array`."""
+    return (A.indices.__array_interface__["data"][0], A.indptr.__array_interface__["data"][0], A.indices.size,
+            A.shape)
+
+
 def _canonical(A: sp.spmatrix) -> sp.csr_matrix:
     """A as CSR with sorted, unique indices (A itself when it already is)."""
     A = A if sp.isspmatrix_csr(A) else sp.csr_matrix(A)
@@ -151,6 +167,15 @@ class BandFactor:
             return np.column_stack([self.solve(B[:, j]) for j in range(B.shape[1])])
         Bp = np.asfortranarray(B if lay.identity else B[lay.perm])
         x, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, Bp, self.piv)
+        return x if lay.identity else x[lay.inv]
+
+    def solve_vector(self, b: np.ndarray) -> np.ndarray:
+        """:meth:`solve` for one real float vector with one real banded factor (an iterative
+        solver's operator: the same LAPACK call without the general path's checks)."""
+        lay = self.layout
+        if self.splu is not None or self.q != 1 or self.complex or b.dtype != np.float64 or b.ndim != 1:
+            return self.solve(b)
+        x, info = lapack.dgbtrs(self.lu, lay.kl, lay.ku, b if lay.identity else b[lay.perm], self.piv)
         return x if lay.identity else x[lay.inv]
 
     def solve(self, b: np.ndarray) -> np.ndarray:

@@ -112,7 +112,7 @@ def harmonic_response(system: LinearSystem, omegas, *, force: np.ndarray | None 
     ``force``: full-length complex load vector; ``force_omega2``: loads proportional to omega^2 (an
     unbalance m e: the load at omega is omega^2 force_omega2), added to ``force`` frequency by frequency;
     ``base_motion``: {constrained DOF index: complex amplitude}.  ``method``: ``direct`` or ``modal``
-    (``n_modes`` lowest modes).
+    (``n_modes`` lowest modes).  ``result.full`` keeps the amplitudes of every DOF.
     """
     system = as_linear_system(system, "harmonic_response")
     damping = Damping() if damping is None else damping

@@ -158,14 +158,20 @@ def lambda_scale(K: sp.spmatrix, M: sp.spmatrix) -> float:
     return float(np.max(np.abs(k[mask]) / m[mask]))
 
 
+PRECISION_ADVICE = "the mesh is too fine for this mode: use fewer or higher-order elements"
+"""The likely cause of a mode not reliable in double precision, unless the caller knows better."""
+
+
 def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | None = None,
-                   tolerance: float = 1e-5, dense_max: int = 12, seeds=None, seed_vectors=None) -> ModalResult:
+                   tolerance: float = 1e-5, dense_max: int = 12, seeds=None, seed_vectors=None,
+                   precision_advice: str = PRECISION_ADVICE) -> ModalResult:
     """Lowest ``n_modes`` natural frequencies and mass-normalised mode shapes of ``system``.
 
     ``seeds``: estimates of the lowest ``n_modes + 1`` eigenvalues (rad^2/s^2), optionally with
     estimated vectors ``seed_vectors`` (one row per seed over the free DOFs), for spectra that
     crowd (drives of many mechanisms): the certified seeded solver :mod:`discrete.linalg.seeded` is used,
-    and shift-invert Lanczos below the seeds if it cannot certify its result."""
+    and shift-invert Lanczos below the seeds if it cannot certify its result.  ``precision_advice``: the
+    likely cause named in the warning of a mode not reliable in double precision (default: the mesh)."""
     system = as_linear_system(system, "modal_analysis")
     n = system.n_free
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or not 1 <= n_modes <= n:
@@ -272,8 +278,7 @@ def modal_analysis(system: LinearSystem, n_modes: int = 6, *, shift: float | Non
         if rq_diff[r] >= tolerance:
             result.warnings.append(
                 f"mode {r + 1}: not reliable in double precision (Rayleigh-quotient mismatch {rq_diff[r]:.1e} >= "
-                f"{tolerance:g}, worst-case bound eps*lam_max/lam = {bound[r]:.1e}); the mesh is too fine for "
-                f"this mode: use fewer or higher-order elements")
+                f"{tolerance:g}, worst-case bound eps*lam_max/lam = {bound[r]:.1e}); {precision_advice}")
         else:
             result.warnings.append(f"mode {r + 1}: residual {residuals[r]:.1e} above {tolerance:g}")
     return result

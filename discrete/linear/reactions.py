@@ -9,7 +9,10 @@ forces, support and driver reactions).
 * Element forces: a linear link with deformation s = g . q (e.g. r_b x_b - r_a x_a of a lumped spring or
   damper) carries the complex force P = (k + i h + i omega c) s (tension positive; h = 2 delta k is the
   hysteretic loss stiffness, delta = psi/(4 pi)).  It pushes its end a along +r_a P and its end b along
-  -r_b P; a link with an end on the fixed frame transmits ``ground_factor`` * P to it.
+  -r_b P; a link with an end on the fixed frame transmits ``ground_factor`` * P to it.  Sign: P is the
+  tension -- the convention of the section loads of FE shafts (N = E A u', T = G J theta': the b side
+  acting on the a side); the named outputs of a model file report an element's force on its end b,
+  F = -P (docs/outputs.md, "Sign conventions").
   :func:`lumped_links` builds the links of a :class:`discrete.lumped.LumpedModel`.
 
 Amplitudes are complex with the convention of :mod:`discrete.linear.harmonic`: x(t) = Re(X e^{i omega t}).

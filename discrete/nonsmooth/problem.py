@@ -194,6 +194,8 @@ class Problem:
         for F in self.forces:
             Fx += np.outer(np.asarray(F.g, float)[f], row(F))
         self.Fx = Fx
+        # the value of every external force: force_rows @ e (one row per force)
+        self.force_rows = np.array([row(F) for F in self.forces]).reshape(len(self.forces), ne)
         self.time_invariant = not np.any(self.Mdot)      # constant inertia
         # element gradients split into free part and the exogenous part (drivers)
         self.gf = [el.g[f] for el in self.elements]
@@ -285,6 +287,30 @@ class Problem:
         x[self.f] += q
         xd[self.f] += v
         return x, xd
+
+    def full_acceleration(self, a, e):
+        """Accelerations of all DOFs (drivers: their prescribed law) from the free ones ``a`` (columns)."""
+        out = self.P @ (self.E @ (self.E @ e))
+        out[self.f] += a
+        return out
+
+    def recover(self, t, x, xd, F) -> tuple[np.ndarray, np.ndarray]:
+        """(accelerations of all DOFs, values of the external forces) at the instants ``t`` of a recorded
+        history (columns: full-DOF positions ``x``, velocities ``xd``, element forces ``F`` along s):
+        q'' from the equations of motion with the recorded element forces -- for an integrator that
+        records no acceleration (regularised, Moreau-Jean: its forces are impulse / dt)."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        E = np.array([self.basis(tk) for tk in t]).T.reshape(self.ne, t.size)
+        f = self.f
+        rhs = -self.K @ x[f] - (self.C + self.Cr) @ xd[f] - self.B @ E + self.Fx @ E
+        if self.n_el:
+            rhs = rhs + np.array(self.gf).T @ np.asarray(F).reshape(self.n_el, t.size)
+        if self.time_invariant:
+            a = np.linalg.solve(self.M0, rhs) if self.nf else rhs
+        else:
+            a = np.column_stack([np.linalg.solve(self.mass(tk), rhs[:, k]) for k, tk in enumerate(t)]) \
+                if t.size else rhs
+        return self.full_acceleration(a, E), self.force_rows @ E
 
     def coords(self, i, q, v, e):
         return self.gf[i] @ q + self.ge[i] @ e, self.gf[i] @ v + self.gve[i] @ e
@@ -472,6 +498,7 @@ class ProblemSpec:
     x0: np.ndarray | None = None
     v0: np.ndarray | None = None
     damping_report: object = None        # how psi became viscous damping (discrete.linear.dissipation)
+    layout: dict | None = None           # the builder's named coordinate vectors of elements and forces (loads)
 
     def problem(self, omega: float | None = None) -> Problem:
         """The Problem, every harmonic driver and force at ``omega`` (None: as given)."""

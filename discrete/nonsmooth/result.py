@@ -59,6 +59,8 @@ class Event:
     kind: str            # stick | slip | reversal | impact | contact_open | contact_close
     element: str
     state: Mapping       # {dof name: {"x": .., "v": ..}} (an EventState or a dict)
+    impulse: float = 0.0  # generalised impulse along s the element's event rule applied (an impact's
+    #                       momentum jump m_eff (s'+ - s'-); 0 where the rule moved no velocity)
 
     def to_dict(self) -> dict:
         return {"t": float(self.t), "kind": self.kind, "element": self.element,
@@ -91,6 +93,9 @@ class TimeHistory:
     driven: list[str] = field(default_factory=list)     # DOFs with prescribed motion (drivers)
     element_forces: np.ndarray | None = None            # (n_elements, n_times): force along s of every
     #                                                     element at the recorded instants (None: not recorded)
+    acceleration: np.ndarray | None = None              # (n_dofs, n_times) accelerations of every DOF (drivers:
+    #                                                     their law) from the equations of motion (None: not recorded)
+    applied: np.ndarray | None = None                   # (n_forces, n_times) value of every external force
 
     def events_of(self, kind: str | None = None, element: str | None = None) -> list[Event]:
         return [e for e in self.events if (kind is None or e.kind == kind) and (element is None or e.element == element)]

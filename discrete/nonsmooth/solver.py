@@ -153,6 +153,17 @@ class EventDrivenSolver:
         out += z
         return out
 
+    def _effective_mass(self, t, i) -> float:
+        """1 / (g_f M(t)^-1 g_f): the mass of the coordinate s_i seen by an impulse along it."""
+        key = ("meff", i)
+        m = self._projections.get(key) if self.p.time_invariant else None
+        if m is None:
+            g = self.p.gf[i]
+            m = 1.0 / float(g @ np.linalg.solve(self.p.mass(t), g)) if np.any(g) else 0.0
+            if self.p.time_invariant:
+                self._projections[key] = m
+        return m
+
     def _project_velocity(self, t, z, i, target):
         return self._project(t, z, i, target, velocity=True)
 
@@ -396,10 +407,11 @@ class EventDrivenSolver:
                 if mode[i] != before[i] and i not in recorded:
                     records.append([i, el.release_event()])
         events = knot_events
+        impulses = dict(ctx.impulses)
         for i, kind in records:
             if kind == "stop":
                 kind = "stick" if mode[i] == 0 else "reversal"
-            ev = Event(t, kind, elements[i].name, {})
+            ev = Event(t, kind, elements[i].name, {}, float(impulses.pop(i, 0.0)))
             events.append(ev)
             self._event_states.append((ev, z))
         if ctx.jump:
@@ -490,6 +502,8 @@ class EventDrivenSolver:
         x, xd = p.full_state(q, v, e)
         E = p.linear_energy(0.0, x, v) if p.time_invariant else np.zeros(T.size)
         Fel = np.zeros((len(p.elements), T.size))
+        qdd = np.zeros((p.nf, T.size))          # free accelerations (the equations of motion of each mode)
+        nf = p.nf
         for m, md in enumerate(modes):         # vectorised per mode (time enters only through M(t))
             ks = np.flatnonzero(which == m) if len(modes) > 1 or not p.time_invariant else slice(None)
             if p.time_invariant:
@@ -497,13 +511,18 @@ class EventDrivenSolver:
                 tk = T[ks] if p.time_dependent else 0.0
                 E[ks] += p.potential_energy(q[:, ks], e[:, ks], md, tk)
                 pc = self._pieces.get(md)
-                Fel[:, ks] = pc.Fm @ Z[:, ks] if pc is not None else \
-                    p.evaluate(tk, q[:, ks], v[:, ks], e[:, ks], md, w[:, ks])["F"]
+                if pc is not None:
+                    Zk = Z[:, ks]
+                    Fel[:, ks] = pc.Fm @ Zk
+                    qdd[:, ks] = pc.A[nf:2 * nf] @ Zk
+                else:
+                    out = p.evaluate(tk, q[:, ks], v[:, ks], e[:, ks], md, w[:, ks])
+                    Fel[:, ks], qdd[:, ks] = out["F"], out["a"]
             else:
                 for k in ks:
                     E[k] = p.energy(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md)[0]
-                    Fel[:, k] = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md,
-                                           w[:, k:k + 1])["F"][:, 0]
+                    out = p.evaluate(T[k], q[:, k:k + 1], v[:, k:k + 1], e[:, k:k + 1], md, w[:, k:k + 1])
+                    Fel[:, k], qdd[:, k] = out["F"][:, 0], out["a"][:, 0]
         if self.o.energy:
             resid = (E - E[0]) - W
             scale = max(np.max(np.abs(E)), np.max(np.abs(W)), 1e-300)
@@ -520,6 +539,7 @@ class EventDrivenSolver:
                                stopped_early=stopped, reason=reason,
                                elements=[f"{el.kind}:{el.name}" for el in p.elements],
                                driven=[p.names[j] for j in p.c], element_forces=Fel,
+                               acceleration=p.full_acceleration(qdd, e), applied=p.force_rows @ e,
                                work_parts={k: float(w) for k, w in acc["Wp"].items()})
         per = detect_period(res) if events else detect_period_smooth(res)
         if per is not None:
@@ -622,6 +642,7 @@ class EventContext:
         self.limits: dict = {}
         self.jump = 0.0
         self.rest_tol = solver.o.rest_tol
+        self.impulses: dict = {}           # element index -> generalised impulse along its s applied here
 
     @property
     def mode(self) -> int:
@@ -662,6 +683,10 @@ class EventContext:
         return self.impact_ref[self.i]
 
     def project_velocity(self, target: float) -> None:
+        """Set s' to ``target`` (the kinetic-energy-minimal velocity jump); the generalised impulse along
+        s this takes, m_eff (target - s'), is recorded with the element's event (Event.impulse)."""
+        jump = (target - self.velocity()) * self.solver._effective_mass(self.t, self.i)
+        self.impulses[self.i] = self.impulses.get(self.i, 0.0) + jump
         self.z = self.solver._project_velocity(self.t, self.z, self.i, target)
 
     def project_position(self, target: float) -> None:

@@ -28,19 +28,26 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--plot", help="write a PNG line plot of the mode shapes here (FE models)")
     m.add_argument("--vtu", help="write the mode shapes to this VTU or XDMF file (FE models)")
     m.add_argument("--png", help="render one PNG per mode off-screen into this directory (FE models)")
+    m.add_argument("--csv", help="write the modes here: frequency and, for lumped and hybrid files, the load "
+                   "shape of every output (one row per mode)")
     m.set_defaults(func=commands.modal)
-    r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data")
+    r = sub.add_parser("render", help="off-screen PNG (and GIF) pictures of the mode shapes, plus VTU/CSV/JSON data; "
+                       "rotor files: the whirl of each lateral complex mode at the [analysis] speed")
     r.add_argument("model")
     r.add_argument("--modes", type=int, default=None, help="number of modes (default: [analysis] modes or 6)")
     r.add_argument("--mode", action="append", type=int, help="render only this mode number (repeatable)")
     r.add_argument("--out", required=True, help="output directory")
     r.add_argument("--gif", action="store_true", help="also write an animated GIF per mode")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=commands.render)
     f = sub.add_parser("forced", help="harmonic response, or the nonlinear amplitude-frequency curve of [steady]")
     f.add_argument("model")
     f.add_argument("--json")
     f.add_argument("--csv")
-    f.add_argument("--plot", help="write a PNG of the response here")
+    f.add_argument("--plot", help="write a PNG of the response here (rotor files: a .png file for the Bode plot, "
+                   "or a directory for the Bode plot and a polar plot per probe)")
+    f.add_argument("--html", help="rotor files: write the Bode plot as a self-contained interactive HTML file "
+                   "(needs plotly: pip install 'drivefem[html]')")
     f.add_argument("--all", action="store_true", help="print every frequency")
     f.set_defaults(func=commands.forced)
     c = sub.add_parser("compare", help="a [drive] model by the discrete, transfer-matrix and continuum methods")
@@ -52,6 +59,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--json")
     s.add_argument("--csv")
     s.add_argument("--png", help="directory for time plots and phase portraits")
+    s.add_argument("--h5", help="write the time history (named outputs, states, events) to this HDF5 file "
+                   "(layout drivefem.history: docs/outputs.md)")
     s.set_defaults(func=commands.simulate)
     w = sub.add_parser("sweep", help="evaluate a grid of parameter points ([sweep] table) on Dask")
     w.add_argument("model")

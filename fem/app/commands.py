@@ -10,6 +10,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from discrete.errors import ModelError
 
 from ..output import check_output_path, columns, contract, tables, write_json
@@ -37,7 +39,7 @@ def _emit(args, command: str, study, data: dict) -> dict:
 
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _outputs(args, json=False, plot=False, vtu=False, png=True)
+    _outputs(args, json=False, plot=False, vtu=False, png=True, csv=False)
     study = Study.load(args.model)
     if (args.vtu or args.png or args.plot) and study.kind != "fe":
         opt = "--vtu" if args.vtu else ("--png" if args.png else "--plot")
@@ -45,12 +47,21 @@ def modal(args) -> int:
                          f"pictures are drawn for [[segment]] models; this is a {study.kind} model)")
     res = study.modal(args.modes)
     data = contract.modal_data(study, res)
+    if study.kind in ("lumped", "hybrid"):
+        data["linearisation"] = contract.linearisation_data(study)
+    shapes = study.outputs(res)
+    contract.with_outputs(data, shapes)
     if study.kind == "lumped":
         bound = _dunkerley(study)
         if bound is not None:
             data["dunkerley_lower_bound_rad_s"] = bound
     _emit(args, "modal", study, data)
     tables.modal_table(study, res)
+    tables.linearisation_lines(data.get("linearisation"))
+    tables.outputs_lines(data)
+    if getattr(args, "csv", None):
+        columns.write(args.csv, columns.modal(res, shapes))
+        print(f"wrote {args.csv}")
     if study.kind == "lumped" and data.get("dunkerley_lower_bound_rad_s") is not None:
         print(tables.dunkerley_line(data["dunkerley_lower_bound_rad_s"], res.omega_rad_s[0]))
     if study.kind == "drive":
@@ -79,7 +90,7 @@ def _dunkerley(study) -> float | None:
     """Dunkerley's lower bound (4.40) of the first frequency of a grounded lumped model."""
     from discrete.dunkerley import dunkerley_bound
 
-    sys_ = study.linear_system()
+    sys_ = study.linear_model.system
     if sys_.rigid_modes is not None and sys_.rigid_modes.shape[1]:
         return None
     return dunkerley_bound(sys_)
@@ -88,6 +99,9 @@ def _dunkerley(study) -> float | None:
 # --------------------------------------------------------------- forced
 def forced(args) -> int:
     _outputs(args, json=False, csv=False, plot=False)
+    if getattr(args, "html", None):
+        raise ModelError("command line", "--html", args.html, "a rotor model file (the interactive Bode plot of the "
+                         "unbalance response); for this model use --plot")
     study = Study.load(args.model)
     if study.is_steady():
         w0, w1 = study.doc.steady.range
@@ -96,26 +110,34 @@ def forced(args) -> int:
     else:
         res = study.forced()
     data = contract.forced_data(study, res)
+    if study.kind in ("lumped", "hybrid"):
+        data["linearisation"] = contract.linearisation_data(study) if not data["steady"] else None
+    loads = study.outputs(res)
+    contract.with_outputs(data, loads)
     _emit(args, "forced", study, data)
     tables.forced_table(study, res, all_rows=args.all)
+    tables.linearisation_lines(data.get("linearisation"))
+    tables.outputs_lines(data)
     if "periodic" in data:
         per = data["periodic"]
         print(f"periodic load, period {per['period']:g} s, {per['harmonics']} harmonics: peak |q| over a period "
               + ", ".join(f"{o} {p:.6g}" for o, p in zip(data["outputs"], per["peak"])))
     steady = data["steady"]
     if args.csv:
-        table = columns.afc(res) if steady else (columns.drive_forced(res) if study.kind == "drive"
-                                                 else columns.harmonic(res))
+        table = columns.afc(res, loads) if steady else (columns.drive_forced(res) if study.kind == "drive"
+                                                        else columns.harmonic(res, loads))
         columns.write(args.csv, table)
         print(f"wrote {args.csv}")
     if args.plot:
-        from ..output.figures import plot_afc, plot_frf
+        from ..output.figures import plot_afc, plot_frf, plot_output_amplitudes
 
         if steady:
             plot_afc(res, args.plot, title=study.title or None)
             print(f"wrote {args.plot}")
         else:
             print(f"wrote {plot_frf(res, args.plot, study.title)}")
+        if loads is not None and not isinstance(loads, dict) and loads.channels:
+            print(f"wrote {plot_output_amplitudes(loads, _beside(args.plot, 'loads'), study.title)}")
     if steady and res.stop_cause == "interrupted":
         print(f"continuation {res.reason}", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -139,27 +161,71 @@ def compare(args) -> int:
 
 # ------------------------------------------------------------- simulate
 def simulate(args) -> int:
-    _outputs(args, json=False, csv=False, png=True)
+    _outputs(args, json=False, csv=False, png=True, h5=False)
     study = Study.load(args.model)
     if study.kind not in ("lumped", "hybrid"):
         raise ModelError(str(args.model), "simulation", None, "a lumped or hybrid model file with a [simulation] table "
                          f"(this is a {study.kind} model)")
     with progress_bar(0.0, study.simulation_settings()["t_end"], "simulate", "s") as update:
         res = study.simulate(progress=update)
-    d = _emit(args, "simulate", study, contract.simulate_data(study, res))
+    outs = study.outputs(res)
+    solver = res.solver if study.kind == "hybrid" else res
+    every = study.doc.simulation.record_every
+    idx = None
+    if every > 1:
+        from ..loads.analyses import decimate
+
+        idx = decimate(solver.t, every, [e.t for e in solver.events])
+    history = None
+    if getattr(args, "h5", None):
+        history = {"file": str(args.h5), "samples": int(solver.t.size if idx is None else idx.size),
+                   "record_every": int(every)}
+    d = _emit(args, "simulate", study, contract.simulate_data(study, res, outs, history))
     tables.simulation_summary(study.title, d)
+    tables.outputs_lines(d)
     if args.csv:
-        columns.write(args.csv, columns.hybrid(res) if study.kind == "hybrid" else columns.time_history(res))
+        if getattr(study.doc, "output", None):
+            table = columns.selected_outputs(solver.t, outs, idx)
+        elif study.kind == "hybrid":
+            table = columns.hybrid(res, outs)
+        else:
+            table = columns.time_history(res, outs, idx)
+        columns.write(args.csv, table)
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        from ..output.history import write_history
+
+        sel = np.arange(solver.t.size) if idx is None else idx
+        has_e = solver.energy.size == solver.t.size
+        names, X, V = _solved_states(study, solver)
+        write_history(args.h5, command="simulate", title=study.title, kind=study.kind, t=solver.t[sel],
+                      outputs=outs.take(sel), states=(names, X[:, sel], V[:, sel]),
+                      energy=(solver.energy[sel], solver.work[sel]) if has_e else None, events=solver.events,
+                      record_every=every, n_recorded=solver.t.size)
+        print(f"wrote {args.h5}")
     if args.png:
         from ..output.figures import plot_hybrid, plot_time_history
 
-        plot = plot_hybrid if study.kind == "hybrid" else plot_time_history
-        for p in plot(res, args.png):
+        if study.kind == "hybrid":
+            paths = plot_hybrid(res, args.png, outputs=outs, title=study.title)
+        else:
+            paths = plot_time_history(res, args.png, outputs=outs, title=study.title)
+        for p in paths:
             print(f"wrote {p}")
     if str(d.get("reason", "")).startswith("interrupted"):
         return EXIT_INTERRUPTED
     return 1 if d.get("stopped_early") else 0
+
+
+def _solved_states(study, solver):
+    """(names, x, v) of the solved coordinates of a run (drivers included)."""
+    return list(solver.names), solver.x, solver.v
+
+
+def _beside(path, what: str) -> Path:
+    """``<stem>_<what><suffix>`` next to ``path`` (a second figure of the same command)."""
+    p = Path(path)
+    return p.with_name(f"{p.stem}_{what}{p.suffix or '.png'}")
 
 
 # ---------------------------------------------------------------- sweep
@@ -192,10 +258,13 @@ def validate(args) -> int:
 def render(args) -> int:
     from ..render import render_study
 
+    from .progress import count_bar
+
     _outputs(args, out=True)
     study = Study.load(args.model)
     modes = [int(m) for m in args.mode] if args.mode else None
-    rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes)
+    with count_bar("render", "images", quiet=getattr(args, "quiet", False)) as update:
+        rep = render_study(study, args.out, n_modes=args.modes, gif=args.gif, modes=modes, progress=update)
     for p in rep.data_files + rep.images:
         print(f"wrote {p}")
     print(rep.message)

@@ -1,4 +1,4 @@
-"""``drivefem convert ROSS_FILE [--out F] [--extrapolate refuse|hold|linear] [--interpolation spline|linear|pchip]``:
+"""``drivefem convert ROSS_FILE [--out F] [--interpolation smoothing-spline|spline|linear|pchip] [--extrapolate continue|refuse|hold|linear]``:
 a rotor saved by ROSS (``Rotor.save``, TOML) as a drivefem ``[rotor]`` model file (:mod:`fem.modelfile.ross`).
 The written file is loaded back and checked (the rotor is built) before the command succeeds.
 Exit codes as for every command (0 done, 2 bad or unsupported input: one line naming the element
@@ -14,10 +14,14 @@ def add_parser(subparsers) -> None:
     p = subparsers.add_parser("convert", help="import a rotor saved by ROSS (Rotor.save TOML) as a drivefem rotor file")
     p.add_argument("source", help="the ROSS rotor file (.toml)")
     p.add_argument("--out", help="the drivefem model file to write (default: print it)")
-    p.add_argument("--extrapolate", default="refuse", choices=["refuse", "hold", "linear"],
-                   help="bearing tables outside their speeds (ROSS extrapolates its splines; default: refuse)")
-    p.add_argument("--interpolation", default="spline", choices=["spline", "linear", "pchip"],
-                   help="bearing tables between their speeds (default: spline, the cubic spline through the points)")
+    p.add_argument("--interpolation", default="smoothing-spline", choices=["smoothing-spline", "spline", "linear", "pchip"],
+                   help="bearing tables between their speeds (default: smoothing-spline, ROSS's convention: its "
+                        "UnivariateSpline with s = number of points, which misses the table points; spline: the "
+                        "cubic spline through them)")
+    p.add_argument("--extrapolate", default=None, choices=["continue", "refuse", "hold", "linear"],
+                   help="bearing tables outside their speeds (default: continue -- the smoothing spline's end "
+                        "cubics, ROSS's extrapolation -- with smoothing-spline, else refuse; linear: the tangent "
+                        "line at the table's end)")
     p.add_argument("--title", help="title of the model (default: from the file name)")
     p.set_defaults(func=convert)
 
@@ -32,11 +36,12 @@ def convert(args) -> int:
     if args.out:
         check_output_path(args.out, "--out")
     data = read_ross(args.source)
-    doc, notes = convert_ross(data, source=args.source, extrapolate=args.extrapolate,
+    extrapolate = args.extrapolate or ("continue" if args.interpolation == "smoothing-spline" else "refuse")
+    doc, notes = convert_ross(data, source=args.source, extrapolate=extrapolate,
                               interpolation=args.interpolation, title=args.title)
     header = [f"Imported from the ROSS rotor file {Path(args.source).name} (saved by ROSS "
               f"{data.get('ross_version', '?')}) by drivefem convert --interpolation {args.interpolation} "
-              f"--extrapolate {args.extrapolate}.",
+              f"--extrapolate {extrapolate}.",
               "Axes: ROSS x, y, z (axial) -> drivefem y, z, x; kxx -> kyy, kyy -> kzz, kxy -> kyz, kyx -> kzy (c alike);",
               "SI units on both sides; ROSS's frequency (rad/s) -> speeds; shaft elements sharing a node -> layers."]
     header += notes

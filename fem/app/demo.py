@@ -95,6 +95,20 @@ def run_demo(out: Path, run_command) -> int:
         failures += rc != 0
         summary.append((name, "render", rc, 0.0))
         print()
+    rotor_runs = (["render", str(EXAMPLES / "rotor_overhung_fan.toml"), "--mode", "1", "--mode", "2", "--gif", "--quiet",
+                   "--out", str(out / "render" / "rotor_overhung_fan")],
+                  ["static", str(EXAMPLES / "rotor_overhung_fan.toml"), "--plot", str(out / "rotor_overhung_fan_static.png")],
+                  ["critical-map", str(EXAMPLES / "rotor_compressor.toml"),
+                   "--plot", str(out / "rotor_compressor_critical_map.png")],
+                  ["stability", str(EXAMPLES / "rotor_jeffcott_seal.toml"), "--quiet",
+                   "--plot", str(out / "rotor_jeffcott_seal_stability.png")],
+                  ["forced", str(EXAMPLES / "rotor_overhung_fan.toml"), "--plot", str(out / "rotor_overhung_fan_plots")])
+    for argv in rotor_runs:                 # the rotor analyses and figures beyond each file's default command
+        print(f"$ drivefem {' '.join(argv)}")
+        rc = run_command(argv)
+        failures += rc != 0
+        summary.append((Path(argv[1]).name, argv[0], rc, 0.0))
+        print()
     for name, rc, dt in _python_examples(out / "python"):
         failures += rc != 0
         summary.append((name, "python", rc, dt))

@@ -24,3 +24,23 @@ def progress_bar(start: float, end: float, desc: str, unit: str):
         yield update
     finally:
         bar.close()
+
+
+@contextmanager
+def count_bar(desc: str, unit: str, *, quiet: bool = False, delay: float = 2.0):
+    """A function ``update(done, total)`` moving a counting bar (the total may grow as the work
+    reveals it, e.g. the crossings a Campbell diagram refines).  Shown on stderr only when it is a
+    terminal, not ``quiet``, and only once the work has taken ``delay`` seconds."""
+    from tqdm import tqdm
+
+    bar = tqdm(total=1, desc=desc, unit=unit, file=sys.stderr, disable=True if quiet else None, leave=False,
+               delay=delay)
+
+    def update(done: int, total: int) -> None:
+        if total != bar.total:
+            bar.total = total
+        bar.update(max(0, done - bar.n))
+    try:
+        yield update
+    finally:
+        bar.close()

@@ -3,10 +3,11 @@
 * ``drivefem modal ROTOR [--modes N] [--json F] [--plot F] [--png DIR]``: complex modes at the speed of
   ``[analysis]`` (damped frequencies, log decrement, whirl); ``--plot`` the orbits of the first
   flexible mode, ``--png`` an off-screen 3D whirl picture per lateral mode;
-* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F] [--all]``: unbalance response of
-  ``[unbalance_response]`` and ``[[unbalance]]`` (Bode plot, peaks with AF and separation margins);
-* ``drivefem campbell ROTOR [--modes N] [--json F] [--png F] [--csv F]``: Campbell diagram of
-  ``[campbell]`` with the critical speeds;
+* ``drivefem forced ROTOR [--json F] [--csv F] [--plot F|DIR] [--html F] [--all]``: unbalance response of
+  ``[unbalance_response]`` and ``[[unbalance]]`` (peaks with AF and separation margins); ``--plot
+  bode.png`` the Bode plot, ``--plot DIR`` the Bode plot and a polar plot per probe;
+* ``drivefem campbell ROTOR [--modes N] [--json F] [--plot F] [--csv F] [--html F]``: Campbell diagram
+  of ``[campbell]``: critical speeds (forward crossings) and backward crossings apart;
 * ``drivefem simulate ROTOR [--json F] [--csv F] [--png DIR]``: the run-up of ``[run_up]`` with the
   ``[[rub]]`` clearances and ``[[unbalance]]`` (orbits, rub forces and regimes, events, energy
   balance); exit 1 when the run stopped early (the reason is printed).
@@ -18,12 +19,13 @@ pictures)."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, contract, write_csv, write_json
+from ..output import check_output_path, columns, contract, tables, write_csv, write_json
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -36,12 +38,20 @@ def add_parser(subparsers) -> None:
     p.add_argument("--modes", type=int, default=None, help="tracked modes (default: [campbell] modes, "
                    "[analysis] modes or 6)")
     p.add_argument("--json", help="write the JSON diagram here (schema drivefem.campbell)")
-    p.add_argument("--png", help="write the PNG diagram here (excitation lines, critical speeds, log decrement)")
+    p.add_argument("--plot", help="write the PNG diagram here (excitation lines, critical speeds and backward "
+                   "crossings apart, operating range, log decrement)")
+    p.add_argument("--png", help="the same as --plot (older spelling)")
     p.add_argument("--csv", help="write the diagram here, one row per speed")
+    p.add_argument("--html", help="write the diagram as a self-contained interactive HTML file (needs plotly: "
+                   "pip install 'drivefem[html]')")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=campbell)
     for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), rotor_command))
+    from . import rotor_analyses
+
+    rotor_analyses.add_parser(subparsers)           # drivefem static | critical-map | stability
 
 
 def _routed(other, rotor_command):
@@ -89,17 +99,31 @@ def _linear_note(study) -> None:
               "analysis sees the rotor free of contact", file=sys.stderr)
 
 
+def _rub_records(study) -> list | None:
+    """The linearisation record of the [[rub]] clearances (open: the linear analyses see no contact)."""
+    rubs = getattr(study.doc, "rub", None) or []
+    return [{"element": r.name or f"rub {i} at x = {r.x:g} m", "kind": "rub", "state": "open", "declared": False,
+             "note": "open: no contact (the clearance acts only in drivefem simulate)"}
+            for i, r in enumerate(rubs, 1)] or None
+
+
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
-    _check_outputs(args, json=False, plot=False, png=True)
+    _check_outputs(args, json=False, plot=False, png=True, csv=False)
     if getattr(args, "vtu", None):
-        raise ModelError("command line", "--vtu", args.vtu, "--json, --plot (orbits) or --png (3D whirl pictures) "
-                         "for a rotor model file")
+        raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --png (3D whirl "
+                         "pictures) for a rotor model file")
     study = _load(args.model)
     _linear_note(study)
     res = study.modal(args.modes)
-    _emit(args, "modal", study, contract.modal_data(study, res))
+    shapes = study.outputs(res)
+    data = contract.with_outputs(contract.modal_data(study, res) | {"linearisation": _rub_records(study)}, shapes)
+    _emit(args, "modal", study, data)
     modal_table(study, res)
+    tables.outputs_lines(data)
+    if getattr(args, "csv", None):
+        columns.write(args.csv, columns.modal(res, shapes))
+        print(f"wrote {args.csv}")
     if args.plot:
         from ..rotor.plots import plot_mode_orbits
 
@@ -152,27 +176,74 @@ def modal_table(study, res, out=None) -> None:
 
 
 # --------------------------------------------------------------- forced
+IMAGE_SUFFIXES = (".png", ".svg", ".pdf", ".jpg", ".jpeg")
+
+
+def figure_target(path, option: str = "--plot"):
+    """(file, None) for a path with an image suffix (one figure), else (None, directory) for several."""
+    from pathlib import Path
+
+    p = Path(path)
+    if p.suffix.lower() in IMAGE_SUFFIXES:
+        return p, None
+    if p.suffix:
+        raise ModelError("command line", option, str(path), "a .png file (one figure) or a directory without a suffix "
+                         "(every figure of the command)")
+    p.mkdir(parents=True, exist_ok=True)
+    return None, p
+
+
+def _file_name(text: str) -> str:
+    import re
+
+    return re.sub(r"[^A-Za-z0-9.-]+", "_", text).strip("_") or "probe"
+
+
 def forced(args) -> int:
-    _check_outputs(args, json=False, csv=False, plot=False)
+    _check_outputs(args, json=False, csv=False, plot=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     _linear_note(study)
     res = study.forced()
-    _emit(args, "forced", study, contract.forced_data(study, res))
+    loads = study.outputs(res)
+    data = contract.with_outputs(contract.forced_data(study, res) | {"linearisation": _rub_records(study)}, loads)
+    _emit(args, "forced", study, data)
     forced_table(study, res, all_rows=args.all)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *response_columns(res))
+        write_csv(args.csv, *response_columns(res, loads))
         print(f"wrote {args.csv}")
     if args.plot:
-        from ..rotor.plots import plot_bode
+        from ..rotor.plots import plot_bode, plot_polar, probe_label
 
-        print(f"wrote {plot_bode(res, args.plot, title=study.title)}")
+        one, folder = figure_target(args.plot)
+        if one is not None:
+            print(f"wrote {plot_bode(res, one, title=study.title)}")
+        else:
+            print(f"wrote {plot_bode(res, folder / 'bode.png', title=study.title)}")
+            for j, p in enumerate(res.probes):
+                name = _file_name(probe_label(p))
+                print(f"wrote {plot_polar(res, folder / f'polar_{j + 1}_{name}.png', j, title=study.title)}")
+        if loads is not None and loads.channels:
+            from ..output.figures import plot_output_amplitudes
+
+            path = (one.with_name(one.stem + "_loads" + (one.suffix or ".png")) if one is not None
+                    else folder / "loads.png")
+            print(f"wrote {plot_output_amplitudes(loads, path, study.title)}")
+    if getattr(args, "html", None):
+        from ..output.html import bode_html
+
+        print(f"wrote {bode_html(res, args.html, title=study.title)}")
     return 0
 
 
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
     out = sys.stdout if out is None else out
     print(f"{study.title}\nunbalance response: {res.method}", file=out)
-    hdr = "".join(f" | {p.direction + '@' + format(p.x, 'g'):>22}" for p in res.probes)
+    hdr = "".join(f" | {p.label[:22]:>22}" for p in res.probes)
     print(f"{'rev/min':>10} {'rad/s':>10}{hdr}\n{'':>21}" + "".join(f" | {'amp [m]':>11}{'lag':>11}" for _ in res.probes),
           file=out)
     s = res.speeds_rad_s
@@ -190,46 +261,76 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
         sm = "" if pk.separation_margin is None else f", separation margin {pk.separation_margin:.1f} %"
         req = "" if pk.required_margin is None else f" (required {pk.required_margin:.1f} %: " + \
             ("ok" if pk.passes else "FAILS") + ")"
-        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.direction}@x={p.x:g}: "
+        print(f"peak at {pk.speed_rad_s * RPM:.2f} rev/min ({pk.speed_rad_s:.4f} rad/s), {p.label}: "
               f"{pk.amplitude:.4e} m, AF {af}{sm}{req}" + (f"; {pk.note}" if pk.note else ""), file=out)
     for w in res.warnings:
         print(f"warning: {w}", file=out)
 
 
-def response_columns(res) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe."""
-    head = ["speed_rpm", "speed_rad_s"] + [f"{p.direction}@x={p.x:g} {q}" for p in res.probes
+def response_columns(res, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then amplitude, lag, Re, Im of every probe and of every named output
+    (bearing reactions, section loads: ``loads``, :class:`fem.loads.analyses.NamedOutputs`)."""
+    head = ["speed_rpm", "speed_rad_s"] + [f"{p.label} {q}" for p in res.probes
                                            for q in ("amplitude", "lag_deg", "re", "im")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} {q}" for n in names for q in ("amplitude", "lag_deg", "re", "im")]
     rows = []
     for j, s in enumerate(res.speeds_rad_s):
         row = [s * RPM, s]
         for p in res.probes:
             row += [p.amplitude[j], p.phase_lag_deg[j], p.value[j].real, p.value[j].imag]
+        for k in range(len(names)):
+            z = complex(loads.values[k, j])
+            row += [abs(z), float(np.mod(-np.degrees(np.angle(z)), 360.0)), z.real, z.imag]
         rows.append(row)
     return head, rows
 
 
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
-    _check_outputs(args, json=False, png=False, csv=False)
+    _check_outputs(args, json=False, png=False, plot=False, csv=False, html=False)
+    if getattr(args, "html", None):
+        from ..output.html import require_plotly
+
+        require_plotly("--html")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "
                          "model)")
     _linear_note(study)
-    camp = study.campbell(args.modes)
-    _emit(args, "campbell", study, contract.campbell_data(study, camp))
+    from ..modelfile.build.rotor import operating_range
+    from .progress import count_bar
+
+    op = operating_range(study.doc)
+    with count_bar("campbell", "solves", quiet=getattr(args, "quiet", False)) as update:
+        camp = study.campbell(args.modes, progress=update)
+    loads = study.outputs(camp)
+    data = contract.with_outputs(contract.campbell_data(study, camp) | {"linearisation": _rub_records(study)}, loads)
+    data["operating_range_rad_s"] = None if op is None else list(op)
+    _emit(args, "campbell", study, data)
     campbell_table(study, camp)
+    tables.outputs_lines(data)
     if args.csv:
-        write_csv(args.csv, *campbell_columns(camp))
+        write_csv(args.csv, *campbell_columns(camp, loads))
         print(f"wrote {args.csv}")
-    if args.png:
+    figure = getattr(args, "plot", None) or args.png
+    if figure:
         from ..rotor.plots import plot_campbell
 
-        print(f"wrote {plot_campbell(camp, args.png, title=study.title)}")
+        print(f"wrote {plot_campbell(camp, figure, title=study.title, operating_range=op)}")
+    if getattr(args, "html", None):
+        from ..output.html import campbell_html
+
+        print(f"wrote {campbell_html(camp, args.html, title=study.title, operating_range=op)}")
     for w in camp.warnings:
         print(f"drivefem: warning: {w}", file=sys.stderr)
     return 0
+
+
+def _crossing_line(c, label: str) -> str:
+    ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
+    return (f"{label} (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
+            f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}")
 
 
 def campbell_table(study, camp, out=None) -> None:
@@ -243,51 +344,61 @@ def campbell_table(study, camp, out=None) -> None:
         w = max(set(row[j] for row in camp.whirl), key=[row[j] for row in camp.whirl].count)
         print(f"{j + 1:4d} {camp.kind[j]:>8} {w:>9} {camp.omega_damped_rad_s[0, j] / (2 * np.pi):18.5f} "
               f"{camp.omega_damped_rad_s[-1, j] / (2 * np.pi):16.5f}", file=out)
-    if not camp.critical_speeds:
+    if not camp.crossings:
         print("no critical speed of orders " + ", ".join(f"{k:g}" for k in camp.orders) + " in the range", file=out)
     for c in camp.critical_speeds:
-        ld = "n/a" if not np.isfinite(c.log_decrement) else f"{c.log_decrement:.4f}"
-        print(f"critical speed (order {c.order:g}): {c.speed_rpm:.3f} rev/min = {c.speed_rad_s:.5f} rad/s, mode "
-              f"{c.mode + 1} ({c.kind}, {c.whirl} whirl), log dec {ld}, MAC {c.mac:.3f}", file=out)
+        print(_crossing_line(c, "critical speed"), file=out)
+    back = camp.backward_crossings
+    if back:
+        iso = camp.isotropic_supports
+        print("backward-whirl crossings, not critical speeds: " + (
+            "the supports are isotropic, so unbalance (a forward force) does not excite them" if iso else
+            "the supports are anisotropic: unbalance can excite them weakly (see drivefem forced)"), file=out)
+        for c in back:
+            print("  " + _crossing_line(c, "backward crossing"), file=out)
 
 
-def campbell_columns(camp) -> tuple[list[str], list]:
-    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode."""
+def campbell_columns(camp, loads=None) -> tuple[list[str], list]:
+    """CSV: speed (rev/min, rad/s), then damped frequency (rad/s) and log decrement of every tracked mode,
+    then the amplitude of every named output (the reactions of each tracked mode: ``loads``)."""
     head = ["speed_rpm", "speed_rad_s"] + [f"mode{j + 1} {q}" for j in range(camp.n_modes)
                                            for q in ("omega_rad_s", "log_decrement", "whirl")]
+    names = loads.names if loads is not None else []
+    head += [f"{n} amplitude" for n in names]
     rows = []
     for i, s in enumerate(camp.speeds_rad_s):
         row = [s * RPM, s]
         for j in range(camp.n_modes):
             ld = camp.log_decrement[i, j]
             row += [camp.omega_damped_rad_s[i, j], ld if np.isfinite(ld) else "", camp.whirl[i][j]]
+        row += [abs(complex(loads.values[k, i])) for k in range(len(names))]
         rows.append(row)
     return head, rows
 
 
 # ------------------------------------------------------------- simulate (run-up with rubs)
 def simulate(args) -> int:
-    _check_outputs(args, json=False, csv=False, png=True)
+    _check_outputs(args, json=False, csv=False, png=True, h5=False)
     from .progress import progress_bar
 
     study = _load(args.model)
     with progress_bar(0.0, 1.0, "run-up", "") as update:
         res = study.run_up(progress=update)
-    data = contract.run_up_data(study, res)
+    outs = study.outputs(res)
+    data = contract.with_outputs(contract.run_up_data(study, res), outs)
     whirl = _whirl(res)
     if whirl is not None:
         data["whirl"] = whirl[1].to_dict()
     doc = _emit(args, "simulate", study, data)
     run_up_table(study, res)
+    tables.outputs_lines(data)
     if whirl is not None:
         whirl_table(whirl[1])
     if args.csv:
-        head = ["t", "speed_rad_s"] + [f"{c}@x={x:g}" for x in res.probe_x for c in ("y", "z")] + \
-            [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")]
-        cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
-            [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))]
-        write_csv(args.csv, head, np.column_stack(cols).tolist())
+        write_csv(args.csv, *run_up_columns(study, res, outs))
         print(f"wrote {args.csv}")
+    if getattr(args, "h5", None):
+        print(f"wrote {_run_up_h5(study, res, outs, args.h5)}")
     if args.png:
         from pathlib import Path
 
@@ -298,13 +409,48 @@ def simulate(args) -> int:
         print(f"wrote {plot_run_up(res, out / 'run_up.png', title=study.title)}")
         k = next((i for i, x in enumerate(res.probe_x) if any(abs(r.x - x) < 1e-12 for r in res.rubs)), 0)
         print(f"wrote {plot_run_up_orbits(res, out / 'run_up_orbits.png', probe=k)}")
+        if outs.channels:
+            from ..output.figures import plot_loads
+
+            loads = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe")]
+            if loads:
+                print(f"wrote {plot_loads(outs.subset(loads), out / 'loads.png', study.title)}")
         if whirl is not None:
             from ..rotor.plots import plot_cascade, plot_whirl_onset
 
             cas, onset = whirl
             print(f"wrote {plot_cascade(cas, out / 'cascade.png', onset=onset, title=study.title)}")
             print(f"wrote {plot_whirl_onset(res, onset, out / 'whirl_onset.png')}")
+        for p in _run_up_spectra(study, res, out, cascade_done=whirl is not None):
+            print(f"wrote {p}")
     return 1 if doc.get("stopped") else 0
+
+
+def _run_up_spectra(study, res, out, cascade_done: bool) -> list:
+    """The run-up Bode plot (1x tracking filter, the steady unbalance response of the linear rotor
+    dashed) and, unless the whirl analysis drew it, the cascade of the probe that moves most."""
+    from ..rotor.plots import plot_cascade, plot_run_up_bode
+    from ..rotor.runup_tracking import synchronous_response
+    from ..rotor.whirl_spectrum import cascade
+
+    written = []
+    if res.t.size < 64 or np.ptp(res.speed) <= 0:
+        print("note: no run-up Bode plot or cascade: the speed does not change (or the run is too short)",
+              file=sys.stderr)
+        return written
+    sync = synchronous_response(res)
+    steady = None
+    lo, hi = max(float(sync.speed_rad_s.min()), 1e-3 * float(sync.speed_rad_s.max())), float(sync.speed_rad_s.max())
+    if study.doc.unbalance and hi > lo:
+        from ..modelfile.build.rotor import _unbalances
+        from ..rotor import Probe, unbalance_response
+
+        steady = unbalance_response(study.rotor, _unbalances(study.doc), np.linspace(lo, hi, 300),
+                                    probes=[Probe(float(x), "major") for x in res.probe_x], find_peaks=False)
+    written.append(plot_run_up_bode(sync, out / "run_up_bode.png", title=study.title, steady=steady))
+    if not cascade_done:
+        written.append(plot_cascade(cascade(res), out / "cascade.png", title=study.title))
+    return written
 
 
 def _whirl(res):
@@ -329,6 +475,40 @@ def whirl_table(onset, out=None) -> None:
           f"{onset.growth:.3g} x", file=out)
 
 
+def run_up_columns(study, res, outs) -> tuple[list[str], list]:
+    """CSV of a run-up: t, speed, the orbit (y, z) at every probe, normal force, slip and contact flag of
+    every rub, then the other named outputs (bearing reactions, section loads); with [[output]] tables: t
+    and those outputs only."""
+    extra = [k for k, c in enumerate(outs.channels) if c.source not in ("run_up", "probe", "rub")]
+    if getattr(study.doc, "output", None):
+        return ["t"] + outs.names, np.column_stack([res.t] + list(outs.values)).tolist()
+    head = ["t", "speed_rad_s"] + [_probe_column(res, k, c) for k in range(res.probe_x.size) for c in ("y", "z")] + \
+        [f"{q} {r.name}" for r in res.rubs for q in ("normal_force", "slip", "in_contact")] + \
+        [outs.channels[k].name for k in extra]
+    cols = [res.t, res.speed] + [a[:, k] for k in range(res.probe_x.size) for a in (res.orbit_y, res.orbit_z)] + \
+        [a for r in res.rubs for a in (r.normal_force, r.slip, r.in_contact.astype(float))] + \
+        [outs.values[k] for k in extra]
+    return head, np.column_stack(cols).tolist()
+
+
+def _run_up_h5(study, res, outs, path):
+    """The run-up's time history in the --h5 container (docs/outputs.md): its named outputs (speed, probe
+    orbits, rub normal forces, bearing reactions, section loads) and the rub events."""
+    from types import SimpleNamespace
+
+    from ..output.history import write_history
+
+    events = [SimpleNamespace(t=e["t"], kind=e["kind"], element=e.get("rub", ""), impulse=0.0) for e in res.events]
+    return write_history(path, command="simulate", title=study.title, kind="rotor", t=res.t, outputs=outs,
+                         events=events)
+
+
+def _probe_column(res, k: int, c: str) -> str:
+    """The CSV column of probe k's orbit component c: <name>.<c> where a named thing is there, else c@x=<x>."""
+    n = res.probe_names[k] if k < len(res.probe_names) else ""
+    return f"{n}.{c}" if n else f"{c}@x={res.probe_x[k]:g}"
+
+
 def _lowest(values) -> str:
     known = [v for v in values if v is not None]
     return f"{min(known):.12f}" if known else ("n/a (free rotor)" if values else "n/a (no rub)")
@@ -349,7 +529,9 @@ def run_up_table(study, res, out=None) -> None:
     for k, x in enumerate(res.probe_x):
         r = np.hypot(res.orbit_y[:, k], res.orbit_z[:, k])
         j = int(np.argmax(r))
-        print(f"  probe x = {x:g} m: peak orbit radius {r[j]:.4e} m at {res.speed[j] * RPM:.1f} rev/min", file=out)
+        name = res.probe_names[k] if k < len(res.probe_names) and res.probe_names[k] else ""
+        print(f"  probe {name + ' ' if name else ''}x = {x:g} m: peak orbit radius {r[j]:.4e} m at "
+              f"{res.speed[j] * RPM:.1f} rev/min", file=out)
     for r in res.rubs:
         fc = r.first_contact
         first = "never" if fc is None else f"first at t = {fc['t']:.5g} s ({fc['speed_rad_s'] * RPM:.1f} rev/min)"

@@ -173,13 +173,16 @@ def _evaluate(doc: dict, values: dict, analysis: str, periods: int) -> dict:
             res = {"peak_omega_rad_s": w, "peak_response": m, "folds_rad_s": [f["omega"] for f in r.folds],
                    "jump_intervals_rad_s": [list(j) for j in r.jump_intervals()],
                    "period_doubling_intervals_rad_s": [list(j) for j in r.unstable_intervals("flip")],
-                   "n_points": int(r.omega.size), "reason": r.reason}
+                   "n_points": int(r.omega.size), "reason": r.reason,
+                   "outputs": {n: {"max_amplitude": o["max_amplitude"], "at_omega_rad_s": o["at_omega_rad_s"]}
+                               for n, o in (study.outputs(r) or {}).items()}}
         else:
             r = study.simulate()
             res = {"period": r.period, "energy_error": r.energy_error, "n_events": len(r.events),
                    "stopped_early": bool(r.stopped_early),
                    "x_max": {n: float(np.max(r.x[i])) for i, n in enumerate(r.names)},
-                   "x_min": {n: float(np.min(r.x[i])) for i, n in enumerate(r.names)}}
+                   "x_min": {n: float(np.min(r.x[i])) for i, n in enumerate(r.names)},
+                   "outputs": _summaries(study.outputs(r))}
         return {"values": values, "status": "ok", "result": _clean(res)}
     except Exception as exc:  # a failed point is a record, not a crash of the sweep
         return {"values": values, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
@@ -208,7 +211,31 @@ def _steady_point(study, periods: int) -> dict:
     except Exception as exc:
         out.update(converged=False, shooting_error=f"{type(exc).__name__}: {exc}")
     out["response"] = sm.measure(res.t, res.x[p.f], res.v[p.f], w)
+    out["outputs"] = _orbit_outputs(study, res)
     return out
+
+
+_SUMMARY_KEYS = ("peak", "mean", "rms", "peak_to_peak", "dynamic_load_factor")
+
+
+def _summaries(outputs) -> dict:
+    """{output: its derived quantities} of a point (peak, mean, rms, peak-to-peak, dynamic load factor)."""
+    return {n: {k: s.get(k) for k in _SUMMARY_KEYS if k in s} for n, s in outputs.summaries.items()}
+
+
+def _orbit_outputs(study, res) -> dict:
+    """The derived quantities of every named output over the orbit integrated at the point (``res``: the
+    event solver's result over the last period(s))."""
+    from ..loads.analyses import time_outputs
+    from ..loads.drive import selected
+
+    lm = selected(study, study.time_loads)
+    out = time_outputs(lm, res.t, res.x, res.v, res.acceleration, res.element_forces, res.applied)
+    d = _summaries(out)
+    for k, c in enumerate(lm.channels):
+        y = out.values[k]
+        d[c.name]["amplitude"] = 0.5 * float(np.max(y) - np.min(y))
+    return d
 
 
 def _clean(o):

@@ -125,6 +125,8 @@ class CompiledHybrid:
     v0: np.ndarray
     coupling: np.ndarray = None
     damping_report: object = None         # how psi became viscous damping (time domain)
+    spring_g: list = field(default_factory=list)   # coordinate vector of every [[spring]] / [[damper]] (outputs)
+    held: dict = field(default_factory=dict)       # full FE DOF of a support or driver -> its solved coordinate
     _problem: Problem | None = None
 
     @property
@@ -139,6 +141,13 @@ class CompiledHybrid:
         """The problem without its forcing frequency fixed (time integrators, steady states)."""
         return ProblemSpec(system=self.system, elements=self.elements, drivers=self.drivers, forces=self.forces,
                            x0=self.x0, v0=self.v0, damping_report=self.damping_report)
+
+    def fe_row(self, j: int) -> np.ndarray:
+        """The row over the solved coordinates that gives the full FE DOF j (x_j = row . q)."""
+        row = np.zeros(self.system.n_dofs)
+        Tj = self.T[j]
+        row[:self.n_fe] = np.asarray(Tj.toarray() if sp.issparse(Tj) else Tj).ravel()
+        return row
 
     def field(self, x: np.ndarray) -> np.ndarray:
         """Full FE DOF vectors from system states: x is (n_dofs_system, n_times) -> (n_times, n_fe_full)."""
@@ -244,12 +253,14 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
         red_constrained = red_sys.constrained
         cl = red_sys.constrained.tolist()
         idx_map = {jf: cl[list(system.constrained).index(jf)] for jf in drv_full}
+        held_map = {int(jf): cl[k] for k, jf in enumerate(system.constrained)}
     else:
         T = sp.identity(nfe, format="csr")
         Mred, Kred, Cred, Hred = system.M, system.K, system.C, system.H
         dof_field, dof_x, dof_name = system.dof_field, system.dof_x, system.dof_name
         red_constrained = system.constrained
         idx_map = {jf: jf for jf in drv_full}
+        held_map = {int(jf): int(jf) for jf in system.constrained}
     nr = Mred.shape[0]
     nb = len(model.bodies)
     n = nr + nb
@@ -278,8 +289,10 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
                 g[:nr] += ratio * np.asarray(Tt @ e).ravel()
         return g
 
+    spring_g = []
     for (pair, s) in zip(s_terms, model.springs):
         g = gvec([(r, sgn) for r, sgn in zip(pair, (-1.0, 1.0)) if r is not None])
+        spring_g.append(g)
         gg = sp.csr_matrix(np.outer(g, g))
         K = K + s.k * gg
         C = C + s.c * gg
@@ -326,7 +339,7 @@ def compile_hybrid(model: HybridModel) -> CompiledHybrid:
     return CompiledHybrid(system=full_sys, T=T, n_fe=nr, reduced=reduced, restitution_report=report,
                           damping_report=psi_report,
                           warnings=warn, elements=elements, drivers=drivers, forces=forces, x0=x0, v0=v0,
-                          coupling=coupling)
+                          coupling=coupling, spring_g=spring_g, held=held_map)
 
 
 def linear_steady_state(system: LinearSystem, fe: FEModel, forces: list, index: dict | None = None

@@ -33,7 +33,7 @@ class HybridResult:
     warnings: list[str] = field(default_factory=list)
     method: str = "event"
     wall_time: float = 0.0
-    sample_index: np.ndarray | None = None     # the solver's records behind ``t`` (section loads)
+    sample_index: np.ndarray | None = None     # the solver's records behind ``t`` (the CSV's named outputs)
 
     @property
     def events(self):

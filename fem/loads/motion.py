@@ -117,7 +117,7 @@ class ElementDamping:
         if damping.type == "hysteretic":
             return cls(added_loss=2.0 * damping.psi / (4.0 * math.pi))
         if damping.type == "modal":
-            return cls(note=f"modal damping (zeta = {damping.zeta:g}) has no element form: the section loads are the "
-                            "elastic and inertia forces; the damping force (at most 2 zeta omega/omega_r of the "
-                            "elastic force of mode r) is not in them, and nodal equilibrium holds up to it")
+            return cls(note=f"modal damping (zeta = {damping.zeta:g}) has no element form: the section loads and "
+                            "reactions are the elastic and inertia forces; the damping force (at most 2 zeta "
+                            "omega/omega_r of the elastic force of mode r) is not in them, and equilibrium holds up to it")
         return cls()

@@ -124,23 +124,14 @@ def rotor_reactions(rs, q, *, qd=None, qdd=None, omega=None, eigenvalue=None, fo
     F = _force(rs.n_dofs, force, t)
     out = {}
     nd = rs.node_dofs
-    ped_index = {p.name: i for i, p in enumerate(rs.rotor.pedestals)}
     n_shaft = rs.node_x.size * len(rs.fields)
-    coeffs = _bearing_coefficients(rs, spin)
-    for b_no, (b, c) in enumerate(zip(rs.rotor.bearings, coeffs), 1):
-        node = rs.node(b.x)
-        d = mo.q[[nd["v"][node], nd["w"][node]]]
-        dd = mo.qd[[nd["v"][node], nd["w"][node]]]
-        if b.pedestal is not None:
-            p = n_shaft + 2 * ped_index[b.pedestal]
-            d, dd = d - mo.q[[p, p + 1]], dd - mo.qd[[p, p + 1]]
-        Kb = c[:, :4].T.reshape(2, 2, t)
-        Cb = c[:, 4:].T.reshape(2, 2, t)
-        f = -(np.einsum("abt,bt->at", Kb, d) + np.einsum("abt,bt->at", Cb, dd))
+    forces = bearing_forces(rs, spin, lambda idx: mo.q[idx].T, lambda idx: mo.qd[idx].T)
+    for b_no, b in enumerate(rs.rotor.bearings, 1):
+        fy, fz = forces[b_no - 1]
         name = f"{b.name or f'bearing {b_no}'}@x={b.x:g}"
-        out[name + ":F_y"], out[name + ":F_z"] = _out(f[0], mo.single), _out(f[1], mo.single)
+        out[name + ":F_y"], out[name + ":F_z"] = _out(fy, mo.single), _out(fz, mo.single)
         if "u" in nd and (b.k_axial or b.c_axial):
-            iu = nd["u"][node]
+            iu = nd["u"][rs.node(b.x)]
             out[name + ":F_x"] = _out(-(b.k_axial * mo.q[iu] + b.c_axial * mo.qd[iu]), mo.single)
     for i, p in enumerate(rs.rotor.pedestals):
         iv, iw = n_shaft + 2 * i, n_shaft + 2 * i + 1
@@ -157,4 +148,37 @@ def rotor_reactions(rs, q, *, qd=None, qdd=None, omega=None, eigenvalue=None, fo
         R = R[b_idx] - F[b_idx]
         for k, i in enumerate(b_idx):
             out[f"{rs.dof_field[i]}@x={rs.dof_x[i]:.6g}"] = _out(R[k], mo.single)
+    return out
+
+
+def bearing_forces(rs, speeds, disp, vel=None, linear_only: bool = False) -> dict[int, tuple]:
+    """{bearing index: (F_y, F_z)} -- the force of every linear bearing (or seal) on the shaft,
+    f = -K(Omega) d - C(Omega) d' with d the shaft node's (v, w) relative to its pedestal (or the ground)
+    and the coefficients of the assembly's tables at each speed.  ``disp(dofs)`` gives those DOFs'
+    displacements at the samples ((n_samples, len(dofs)): real, or complex amplitudes), ``vel(dofs)``
+    their rates (None: i Omega times the displacements, a synchronous response); ``speeds`` (n_samples,)
+    rad/s.  ``linear_only``: leave out the bearings that run with their own nonlinear law (run-ups)."""
+    speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+    ped = {p.name: i for i, p in enumerate(rs.rotor.pedestals)}
+    n_shaft = rs.node_x.size * len(rs.fields)
+    coeffs = _bearing_coefficients(rs, speeds)
+    out = {}
+    for k, (b, c) in enumerate(zip(rs.rotor.bearings, coeffs)):
+        if linear_only and getattr(b, "nonlinear", False):
+            continue
+        node = rs.node(b.x)
+        idx = [int(rs.node_dofs["v"][node]), int(rs.node_dofs["w"][node])]
+        if b.pedestal is not None:
+            p = n_shaft + 2 * ped[b.pedestal]
+            idx += [p, p + 1]
+        q = np.asarray(disp(idx))
+        qd = 1j * speeds[:, None] * q if vel is None else np.asarray(vel(idx))
+        d, dd = q[:, :2].T, qd[:, :2].T
+        if b.pedestal is not None:
+            d, dd = d - q[:, 2:].T, dd - qd[:, 2:].T
+        n_t = d.shape[1]
+        Kb = c[:, :4].T.reshape(2, 2, n_t)
+        Cb = c[:, 4:].T.reshape(2, 2, n_t)
+        f = -(np.einsum("abt,bt->at", Kb, d) + np.einsum("abt,bt->at", Cb, dd))
+        out[k] = (f[0], f[1])
     return out

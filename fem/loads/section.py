@@ -21,8 +21,8 @@ from .elements import ElementSet
 from .motion import WHERE, ElementDamping, Motion, motion
 from .recovery import element_end_stations, end_forces, station_values
 
-UNITS = {"torque": "N·m", "axial_force": "N", "bending_moment": "N·m", "shear_force": "N",
-         "bending_moment_y": "N·m", "bending_moment_z": "N·m", "shear_force_y": "N", "shear_force_z": "N"}
+UNITS = {"torque": "N m", "axial_force": "N", "bending_moment": "N m", "shear_force": "N",
+         "bending_moment_y": "N m", "bending_moment_z": "N m", "shear_force_y": "N", "shear_force_z": "N"}
 SIDES = ("right", "left")
 
 
@@ -31,7 +31,7 @@ class SectionLoads:
     """Section loads at the stations ``x`` (m).
 
     ``quantities[name]`` is (n_x,) for one state or (n_x, n_t) for several (time samples,
-    frequencies, modes), complex for harmonic amplitudes and modes; ``units[name]`` is "N·m" or "N".
+    frequencies, modes), complex for harmonic amplitudes and modes; ``units[name]`` is "N m" or "N".
     ``side[i]`` says on which side of x_i the value holds: "right" (just right of x: taken from the
     element that starts there) or "left" (just left of x); at a node with a point load, point
     inertia, spring or support the two differ by exactly that nodal force.  ``element`` is the

@@ -14,6 +14,8 @@ from pydantic.fields import FieldInfo
 
 from discrete.errors import ModelError
 
+from .schema.base import Number, Unit
+
 
 def to_model_error(exc: ValidationError, root: type[BaseModel], kind: str, hints: dict[str, str]) -> ModelError:
     """The first problem of ``exc`` (raised validating ``root``) as a :class:`ModelError`."""
@@ -35,6 +37,8 @@ def to_model_error(exc: ValidationError, root: type[BaseModel], kind: str, hints
             tables += [(s, "key") for s in sub.split(".")]
         where = _where(tables + [(None, "key")], kind)
         return ModelError(where, key, ctx.get("value"), ctx["allowed"])
+    if etype == "drivefem_unit":                 # a quantity string (units.py; the message is the validator's)
+        return ModelError(where, key, ctx["text"], ctx["allowed"])
     if etype in ("union_tag_invalid", "union_tag_not_found"):
         tag_key = TAG_KEYS.get(str(ctx.get("discriminator", "")).strip("'").split("(")[0], "type")
         tags = str(ctx.get("expected_tags", "")).replace(", ", " | ")
@@ -68,9 +72,22 @@ TAG_KEYS = {"_shape": "shape", "_analysis_type": "type", "_shaft_type": "type"}
 
 
 def _pick(errors: list[dict]) -> dict:
-    """Prefer an error that is not one branch of a union (those come in groups for one key)."""
-    rules = [e for e in errors if e["type"].startswith("drivefem")]
-    return rules[0] if rules else errors[0]
+    """The error to report: a cross-field rule first, then a quantity string that was read but does not
+    fit its key; a string that is no quantity where the key also takes words (a union with a Literal)
+    is reported as not one of the words either (the generic description lists both)."""
+    for e in errors:
+        if e["type"] == "drivefem_rule":
+            return e
+    for e in errors:
+        if e["type"] == "drivefem_unit" and e["ctx"].get("parsed"):
+            return e
+    first = errors[0]
+    if first["type"] == "drivefem_unit":
+        field_loc = tuple(first["loc"][:-1])
+        words = [e for e in errors if e["type"] == "literal_error" and tuple(e["loc"][:-1]) == field_loc]
+        if words:
+            return words[0]
+    return first
 
 
 def _short(value):
@@ -91,6 +108,9 @@ def _unwrap(ann):
     """Strip Annotated and Optional; returns (annotation, metadata list)."""
     meta = []
     while True:
+        if isinstance(ann, Number):              # a number type used without its unit
+            ann = ann.plain
+            continue
         if get_origin(ann) is Annotated:
             args = get_args(ann)
             ann = args[0]
@@ -185,15 +205,16 @@ def _where(path: list, kind: str) -> str:
 
 
 # ------------------------------------------------------------------ descriptions
-def describe(ann, metadata=()) -> str:
-    """What a value of a declared type may be, in words ("a number > 0", "'a' | 'b'", ...)."""
+def describe(ann, metadata=(), units: bool = True) -> str:
+    """What a value of a declared type may be, in words ("a number > 0 in m", "'a' | 'b'", ...);
+    ``units``: name the declared unit of numbers."""
     ann, meta = _unwrap(ann)
     meta = list(metadata) + meta
     if _is_union(ann):
         members = [a for a in get_args(ann) if a is not type(None)]
         if all(_model_of(a) is not None for a in members):
             return "a table"
-        parts = [describe(a) for a in members]
+        parts = [describe(a, units=units) for a in members]
         return " or ".join(dict.fromkeys(parts))
     origin = get_origin(ann)
     if origin is Literal:
@@ -209,9 +230,10 @@ def describe(ann, metadata=()) -> str:
             for cls, op in ((at.Gt, ">"), (at.Ge, ">="), (at.Lt, "<"), (at.Le, "<=")):
                 if isinstance(m, cls):
                     bounds.append(f"{op} {getattr(m, cls.__name__.lower())}")
-        return noun + (" " + " and ".join(bounds) if bounds else "")
+        unit = next((m for m in meta if isinstance(m, Unit) and m.kind == "quantity" and m.units != ("1",)), None)
+        return noun + (" " + " and ".join(bounds) if bounds else "") + (f" in {unit.label}" if unit and units else "")
     if origin is list:
-        item = describe(get_args(ann)[0])
+        item = describe(get_args(ann)[0], units=units)
         lo = next((m.min_length for m in meta if isinstance(m, at.MinLen)), None)
         hi = next((m.max_length for m in meta if isinstance(m, at.MaxLen)), None)
         model = _model_of(get_args(ann)[0])

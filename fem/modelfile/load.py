@@ -9,6 +9,8 @@ from pydantic import ValidationError
 
 from discrete.errors import ModelError
 
+from . import plausibility
+from .coordinates import check_document as check_coordinates
 from .errors import to_model_error
 from .schema.document import HINTS, KINDS, detect_kind
 from .source import read_toml
@@ -34,9 +36,12 @@ def parse(doc: dict, kind: str | None = None):
         raise ModelError("model file", "kind", kind, " | ".join(map(repr, KINDS)))
     cls = KINDS[kind]
     try:
-        return cls.model_validate(doc)
+        model = cls.model_validate(doc)
     except ValidationError as exc:
         raise to_model_error(exc, cls, kind, HINTS[kind]) from None
+    check_coordinates(model, doc, kind)
+    object.__setattr__(model, "__plausibility__", plausibility.check(model, doc, kind))
+    return model
 
 
 def kind_of(model) -> str:

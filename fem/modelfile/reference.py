@@ -13,6 +13,7 @@ from pydantic import BaseModel
 from pydantic_core import PydanticUndefined
 
 from .errors import _model_of, _unwrap, describe
+from .schema.base import declared_unit
 from .schema.document import KINDS
 
 PAGE = Path(__file__).resolve().parents[2] / "docs" / "model_file.md"
@@ -21,6 +22,11 @@ HEADER = """# Model-file reference
 Generated from the declared schema (`fem/modelfile/schema/`) by `python -m fem.modelfile.reference`;
 do not edit by hand.  `drivefem schema [KIND]` prints the same declaration as JSON Schema for editors.
 Unknown keys are errors at every level; numbers must be finite.
+
+The column *unit* is the unit of a plain number; every such key also takes a quantity string in any
+unit of the same dimension, converted when the file is read: `d = "50 mm"`, `E = "210 GPa"`,
+`speed_rpm = "314.16 rad/s"` (see [Units](units.md)).  Two units joined by *or*: the key acts on a
+coordinate that is a displacement or an angle, and its unit follows it.  *count*: an integer.
 """
 
 
@@ -57,17 +63,20 @@ def _default(f) -> str:
     return repr(d)
 
 
-def table_rows(model: type[BaseModel]) -> list[tuple[str, str, str, str]]:
+def table_rows(model: type[BaseModel]) -> list[tuple[str, str, str, str, str]]:
+    """(key, allowed values, unit, default, meaning) of every key of a table."""
     rows = []
     for key, f in model.model_fields.items():
         text = " ".join((f.description or "").split())
-        rows.append((f.alias or key, describe(f.annotation, f.metadata), _default(f), text))
+        unit = declared_unit(f.annotation, f.metadata)
+        rows.append((f.alias or key, describe(f.annotation, f.metadata, units=False), unit.label if unit else "", _default(f), text))
     return rows
 
 
 def _rows(model) -> list[str]:
     cell = lambda text: text.replace("|", "&#124;")  # noqa: E731
-    return [f"| `{key}` | {cell(typ)} | {cell(default)} | {cell(text)} |" for key, typ, default, text in table_rows(model)]
+    return [f"| `{key}` | {cell(typ)} | {cell(unit)} | {cell(default)} | {cell(text)} |"
+            for key, typ, unit, default, text in table_rows(model)]
 
 
 def render() -> str:
@@ -77,7 +86,7 @@ def render() -> str:
     out = [HEADER]
     for kind, cls in KINDS.items():
         out.append(f"\n## `{kind}` files ({cls.__doc__.strip().splitlines()[0]})\n")
-        out.append("| top-level key | allowed | default | meaning |\n| --- | --- | --- | --- |")
+        out.append("| top-level key | allowed | unit | default | meaning |\n| --- | --- | --- | --- | --- |")
         out += _rows(cls)
     seen: dict = {}
     for cls in KINDS.values():
@@ -86,7 +95,7 @@ def render() -> str:
     for label, model in seen.items():
         doc = " ".join((model.__doc__ or "").split())
         out.append(f"\n### `{label}`\n\n{doc}\n")
-        out.append("| key | allowed | default | meaning |\n| --- | --- | --- | --- |")
+        out.append("| key | allowed | unit | default | meaning |\n| --- | --- | --- | --- | --- |")
         out += _rows(model)
     return "\n".join(out) + "\n"
 

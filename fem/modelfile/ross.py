@@ -20,9 +20,12 @@ Conventions mapped (docs/rotor.md, "Importing a ROSS rotor"):
   as in ROSS); consecutive identical stations are merged into one segment of several elements;
 * Cowper's shear coefficient (ROSS's default) is drivefem's default; Hutchinson's is written as
   an explicit ``shear_coefficient`` (ROSS's formula for the element's mean diameter ratio);
-* bearing tables keep their values; ``interpolation`` (default "spline", the cubic spline
-  through the points that ROSS's ``UnivariateSpline`` approximates) and ``extrapolate`` (default
-  "refuse"; ROSS extrapolates its spline) are chosen by the caller;
+* bearing tables keep their values; ``interpolation`` defaults to "smoothing-spline" with
+  ``extrapolate = "continue"``: ROSS's own convention (scipy's ``UnivariateSpline`` with s = number
+  of points, not an interpolant, extrapolated along its end cubics; :mod:`fem.rotor.tables`), so the
+  converted rotor computes with ROSS's coefficients at every speed; the caller may choose
+  "spline" / "linear" / "pchip" and "refuse" / "hold" / "linear" instead (the written file says
+  which, and by how much ROSS's spline misses the table points);
 * a ``PointMass`` linked to the shaft by bearings with ``n_link`` and held by a grounded bearing
   with constant, uncoupled coefficients becomes a ``[[rotor.pedestal]]``; a point mass on a shaft
   node (mx = my) a disc without inertia.
@@ -50,8 +53,10 @@ DISK_KEYS = {"n", "m", "Id", "Ip", "tag", "scale_factor", "color"}
 POINT_MASS_KEYS = {"n", "m", "mx", "my", "mz", "tag", "scale_factor", "color"}
 #: keys of a linear bearing table that carry no mechanics (labels, plotting, a seal's leakage)
 BEARING_INERT = {"n", "n_link", "tag", "color", "scale_factor", "frequency", "seal_leakage", "kwargs"}
-EXTRAPOLATIONS = ("refuse", "hold", "linear")
-INTERPOLATIONS = ("spline", "linear", "pchip")
+EXTRAPOLATIONS = ("continue", "refuse", "hold", "linear")
+INTERPOLATIONS = ("smoothing-spline", "spline", "linear", "pchip")
+#: ROSS's own convention for its speed tables (UnivariateSpline, extrapolated)
+ROSS_TABLES = ("smoothing-spline", "continue")
 
 
 def _bad(where: str, key: str, value, allowed: str):
@@ -172,10 +177,14 @@ def _coefficients(where: str, t: dict) -> tuple[list | None, dict]:
     return speeds, vals
 
 
-def convert_ross(data: dict, *, source: str = "ROSS file", extrapolate: str = "refuse",
-                 interpolation: str = "spline", title: str | None = None) -> tuple[dict, list[str]]:
+def convert_ross(data: dict, *, source: str = "ROSS file", extrapolate: str | None = None,
+                 interpolation: str = "smoothing-spline", title: str | None = None) -> tuple[dict, list[str]]:
     """A drivefem rotor document (dict, ready for TOML) from a ROSS file's tables, and notes on
-    what was mapped or left out (ROSS's plotting attributes, speed ranges of its parameters)."""
+    what was mapped or left out (ROSS's plotting attributes, speed ranges of its parameters) and on
+    the bearing tables' interpolation.  ``extrapolate`` None: "continue" for "smoothing-spline"
+    (ROSS's extrapolation), else "refuse"."""
+    if extrapolate is None:
+        extrapolate = "continue" if interpolation == "smoothing-spline" else "refuse"
     if extrapolate not in EXTRAPOLATIONS:
         _bad("convert", "--extrapolate", extrapolate, " | ".join(EXTRAPOLATIONS))
     if interpolation not in INTERPOLATIONS:
@@ -314,6 +323,9 @@ def convert_ross(data: dict, *, source: str = "ROSS file", extrapolate: str = "r
             _bad(f"[{name!r}]", "n", n, "a point mass on a shaft node, or one that some bearing links to (n_link)")
     if not out_bearings:
         notes.append("no bearings: a free-free rotor")
+    tabled = [b for b in out_bearings if "speeds" in b]
+    if tabled:
+        notes += _table_notes(tabled, interpolation, extrapolate)
     rotor["disc"] = discs
     rotor["bearing"] = out_bearings
     if pedestals:
@@ -323,6 +335,38 @@ def convert_ross(data: dict, *, source: str = "ROSS file", extrapolate: str = "r
     if not discs:
         del rotor["disc"]
     return doc, notes
+
+
+def _table_notes(tabled: list, interpolation: str, extrapolate: str) -> list[str]:
+    """What the written file says about its bearing tables: the interpolation and extrapolation and
+    how far ROSS's smoothing spline lies from the table points (largest over the tables' rows,
+    relative to the row's largest value)."""
+    import numpy as np
+
+    from ..rotor.tables import SmoothingSplines
+
+    miss, where = 0.0, ""
+    for b in tabled:
+        grid = np.asarray(b["speeds"], dtype=float)
+        rows = np.array([np.broadcast_to(np.asarray(b.get(k, 0.0), dtype=float), grid.shape)
+                         for k in LATERAL_MAP.values()])
+        fit = SmoothingSplines(grid, rows)(grid)
+        scale = np.maximum(np.abs(rows).max(axis=1, keepdims=True), 1e-300)
+        err = np.abs(fit - rows) / scale
+        if err.max() > miss:
+            r = int(np.unravel_index(np.argmax(err), err.shape)[0])
+            miss, where = float(err.max()), f"{b['name']!r} {list(LATERAL_MAP.values())[r]}"
+    ross = (f"ROSS's smoothing spline misses the table points by up to {miss:.1e} of a row's largest value "
+            f"({where})")
+    if (interpolation, extrapolate) == ROSS_TABLES:
+        return [f"Bearing tables: interpolation = 'smoothing-spline', extrapolate = 'continue': ROSS's convention "
+                "(scipy's UnivariateSpline, a cubic smoothing spline with s = number of points, extrapolated along "
+                f"its end cubics), the coefficients ROSS computes with at every speed. It is not an interpolant: {ross}. "
+                "drivefem convert --interpolation spline|linear|pchip and --extrapolate refuse|hold|linear choose "
+                "otherwise."]
+    return [f"Bearing tables: interpolation = {interpolation!r}, extrapolate = {extrapolate!r} (chosen); ROSS "
+            f"computes with its smoothing spline, extrapolated (drivefem convert's default, 'smoothing-spline' with "
+            f"'continue'): {ross}."]
 
 
 def _same_station(prev: dict, seg: dict) -> bool:
@@ -363,5 +407,8 @@ def rotor_file_text(doc: dict, header: list[str]) -> str:
     """The model file: the schema line (editors), ``header`` as comments, the document."""
     import tomli_w
 
-    lines = ["#:schema ../fem/modelfile/drivefem.schema.json"] + [f"# {h}".rstrip() for h in header]
+    import textwrap
+
+    lines = ["#:schema ../fem/modelfile/drivefem.schema.json"] + [
+        f"# {line}".rstrip() for h in header for line in (textwrap.wrap(h, 110, subsequent_indent="  ") or [""])]
     return "\n".join(lines) + "\n\n" + tomli_w.dumps(doc)

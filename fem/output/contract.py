@@ -12,51 +12,89 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   ``phase_lag_deg`` (n_out x n_freq), ``response`` (complex, n_out x n_freq; null for the nonlinear
   curve, whose amplitude is its response measure), ``method``, ``damping``, ``warnings``; the
   nonlinear curve (``steady``) adds ``stable``, ``max_multiplier``, ``folds``, ``reason``, ...
-* simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...
+* simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...;
+  lumped and hybrid files add ``element_summary`` (impacts, impulse_sum, friction work per element) and
+  ``history`` (the --h5 file, record_every); modal and forced of lumped, hybrid and rotor files add
+  ``linearisation`` (what each nonsmooth element became).
 * parametric: the stability chart -- ``depth`` (n_depth), ``omega_rad_s`` and ``omega_ratio`` (Omega /
   omega_1, n_omega), ``rho_max``, ``stable``, ``growth_rate_1_s``, ``error_estimate``,
   ``liouville_residual`` (n_depth x n_omega), ``natural_omega_rad_s``, ``centres``, ``thresholds``,
   ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
-  shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per
-  probe, ``peaks`` (AF, separation margins) and ``orbit_major`` (n_speeds x n_nodes); campbell:
-  ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``, ``natural_frequency_rad_s``, ``log_decrement``,
-  ``damping_ratio``, ``whirl`` (n_modes x n_speeds), ``kind_of_mode``, ``mac_min``, ``residual_max``,
-  ``orders``, ``critical_speeds``, ``warnings``.
-* ``section_loads`` (FE, hybrid and rotor files; absent for lumped and drive files and nonlinear steady
-  states): the internal loads of the result (docs/loads.md) -- ``quantities`` (names), ``units``,
-  ``kind`` (modal | harmonic | time), ``stations`` (which), ``x`` and ``side`` (n_x; "left"/"right": the
-  value just left/right of x), ``values`` {quantity: n_x x n_columns} with one column per mode,
-  frequency or time sample (``omega_rad_s`` of frequencies and undamped modes, complex ``eigenvalues`` of
-  rotor modes, or ``t``), ``normalisation`` (modes),
-  ``reactions`` {``labels``, ``units``, ``values``: n_reactions x n_columns}, ``convention``, ``notes``.
+  shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per probe
+  (named after the disc/bearing there), ``peaks`` (AF, separation margins), ``orbit_major`` (n_speeds x
+  n_nodes); simulate is the run-up; campbell: ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``,
+  ``natural_frequency_rad_s``, ``log_decrement``, ``damping_ratio``, ``whirl`` (n_modes x n_speeds),
+  ``kind_of_mode``, ``mac_min``, ``residual_max``, ``orders``, ``critical_speeds``, ``warnings``.
+* ``named_outputs`` (every command of lumped, hybrid, FE and rotor files that has them; version 2,
+  docs/outputs.md): {name: ``quantity``, ``unit``, ``source``, ``where`` (and ``x``, ``side``,
+  ``section_quantity``, ``dof``, ... where they apply) + the analysis' values -- time histories: ``peak``,
+  ``max``, ``min``, ``mean``, ``rms``, ``peak_to_peak``, ``dynamic_load_factor``; modes: ``modes``;
+  frequencies: complex ``response``, ``amplitude``, ``phase_lag_deg``, ``peak``, ``peak_omega_rad_s``;
+  Campbell speeds: ``shape``, ``amplitude`` (the reactions of each tracked mode); a [steady] curve: ``amplitude``, ``peak``, ``mean``, ``dynamic_load_factor`` per point}: element forces,
+  reactions of drivers, supports and bearings, section loads of FE shafts and rotors; and
+  ``named_outputs_notes``.  Version 1's ``section_loads`` key is gone (its loads are named outputs).
 Complex numbers are ``{"re": .., "im": ..}``; no number is NaN or infinite.
 """
 from __future__ import annotations
 
 import numpy as np
 
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 
 
 def payload(command: str, study, data: dict) -> dict:
-    """The JSON document of ``command`` for ``study`` with the command's ``data``."""
+    """The JSON document of ``command`` for ``study`` with the command's ``data``; the model file's
+    plausibility warnings (values likely not in SI, a model outside its theory) come first in
+    ``warnings`` (the key is added for them where a command has none)."""
+    model_warnings = getattr(study, "model_warnings", None)
+    if model_warnings:
+        data = {**data, "warnings": model_warnings + list(data.get("warnings") or [])}
     return {"schema": f"drivefem.{command}", "version": SCHEMA_VERSION,
             "title": study.title if study is not None else "", "kind": study.kind if study is not None else None,
             **data}
 
 
-def with_loads(study, res, d: dict) -> dict:
-    """``d`` with the key ``section_loads`` where the study's kind has internal loads of ``res``."""
-    loads = study.loads(res) if study is not None and study.kind in ("fe", "hybrid", "rotor") else None
-    if loads is not None and loads.finite:
-        d["section_loads"] = loads.to_dict()
-    elif loads is not None:
-        d["section_loads"] = None
-        d.setdefault("warnings", []).append("section loads not written: they overflow double precision (scale the "
+def with_outputs(d: dict, outputs) -> dict:
+    """``d`` with the named outputs of its analysis (:meth:`fem.study.Study.outputs`): ``named_outputs``
+    {name: description and values} and ``named_outputs_notes``; nothing where the analysis has none."""
+    if outputs is None:
+        return d
+    if isinstance(outputs, dict):                  # a [steady] curve: amplitude, peak, mean per point
+        d["named_outputs"], d["named_outputs_notes"] = outputs, []
+        return d
+    if not np.all(np.isfinite(np.asarray(outputs.values))):
+        d["named_outputs"], d["named_outputs_notes"] = None, list(outputs.notes)
+        d.setdefault("warnings", []).append("named outputs not written: they overflow double precision (scale the "
                                             "model's units; the analysis' own results above are unaffected)")
+        return d
+    d["named_outputs"] = named_outputs_data(outputs)
+    d["named_outputs_notes"] = list(outputs.notes)
     return d
+
+
+def named_outputs_data(outputs) -> dict:
+    """{name: quantity, unit, source, where (and what locates it: x, side, section_quantity, dof, between,
+    ratios, ...) + the analysis' values}: time histories -- the derived quantities (peak, max, min, mean,
+    rms, peak_to_peak, dynamic_load_factor); modes -- ``modes`` (one value per mode, complex for complex
+    modes); frequencies -- ``response`` (complex), ``amplitude``, ``phase_lag_deg``, ``peak``,
+    ``peak_omega_rad_s``; Campbell speeds -- ``shape`` (complex, per speed), ``amplitude``, ``peak``,
+    ``peak_speed_rad_s``."""
+    out = {}
+    for k, c in enumerate(outputs.channels):
+        d = {**c.describe(), **outputs.summaries.get(c.name, {})}
+        v = outputs.values[k]
+        if outputs.axis == "mode":
+            d["modes"] = np.real_if_close(v) if np.iscomplexobj(v) and not np.any(np.imag(v)) else v
+        elif outputs.axis == "omega":
+            z = np.asarray(v, dtype=complex)
+            d.update({"response": z, "amplitude": np.abs(z), "phase_lag_deg": np.mod(-np.degrees(np.angle(z)), 360.0)})
+        elif outputs.axis == "speed":          # Campbell: one tracked mode shape per speed
+            z = np.asarray(v, dtype=complex)
+            d.update({"shape": z, "amplitude": np.abs(z)})
+        out[c.name] = d
+    return out
 
 
 # ------------------------------------------------------------------ modal
@@ -65,7 +103,7 @@ def modal_data(study, res) -> dict:
     if study.kind == "drive":
         return _drive_modal(res)
     if study.kind == "rotor":
-        return with_loads(study, res, _rotor_modal(study, res))
+        return _rotor_modal(study, res)
     d = res.to_dict()
     ok = res.reliable | res.rigid
     d["omega_rad_s"] = [v if r else None for v, r in zip(res.omega_rad_s.tolist(), ok)]
@@ -86,7 +124,7 @@ def modal_data(study, res) -> dict:
         d["mode_shapes"] = shapes
     else:
         d["mode_shapes"] = {"dofs": study.linear_system().labels(), "modes": res.shapes.T}
-    return with_loads(study, res, d)
+    return d
 
 
 def _drive_modal(res) -> dict:
@@ -119,7 +157,7 @@ def forced_data(study, res) -> dict:
         d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
         return d
     if study.kind == "rotor":
-        return with_loads(study, res, _rotor_forced(res))
+        return _rotor_forced(res)
     if study.kind == "drive":
         d = res.to_dict()
         Z = np.concatenate([res.theta, res.y], axis=1).T            # (2n, n_freq)
@@ -139,14 +177,68 @@ def forced_data(study, res) -> dict:
     if res.relative is not None:
         d["relative_amplitude"] = np.abs(res.relative).T
     d["steady"] = False
-    return with_loads(study, res, d)
+    return d
 
 
 # ------------------------------------------------------------------ simulate
-def simulate_data(study, res) -> dict:
-    d = res.to_dict()
+def simulate_data(study, res, outputs=None, history=None) -> dict:
+    """The simulation's summary; ``outputs``: its named outputs (``named_outputs``: each one's description
+    and derived quantities; ``element_summary``: impacts and friction work per element); ``history``: where
+    the time history went (--h5) and how it was decimated."""
+    solver = getattr(res, "solver", res)
+    d = res.to_dict(events=False)
+    d["events"] = events_json(solver.events)
     d["psi_time_domain"] = study.damping_report.to_dict() if study.damping_report is not None else None
-    return with_loads(study, res, d)
+    with_outputs(d, outputs)
+    if outputs is not None:
+        d["element_summary"] = outputs.elements
+    d["history"] = history
+    return d
+
+
+def events_json(events):
+    """The ``events`` list ({t, kind, element, state: {dof: {x, v}}} each, design.md §5) as JSON text
+    built in one pass from the run's arrays of event states (:class:`discrete.nonsmooth.result.EventState`:
+    a long run's thousands of events are written without building a dictionary per event); other events
+    through the one encoder.  Numbers are written as Python's repr (the shortest round-trip form, as
+    ``json`` writes them); a non-finite one is refused like everywhere else."""
+    import json
+
+    from discrete.errors import SolverError
+    from discrete.nonsmooth.result import EventState
+
+    from .jsonio import Raw
+
+    if not events:
+        return []
+    first = events[0].state
+    if not (type(first) is EventState and all(type(e.state) is EventState and e.state._x is first._x
+                                               for e in events)):
+        return [e.to_dict() for e in events]
+    names = first._names
+    cols = np.fromiter((e.state._k for e in events), dtype=np.intp, count=len(events))
+    X, V = first._x[:, cols], first._v[:, cols]
+    t = np.fromiter((e.t for e in events), dtype=float, count=len(events))
+    for what, arr in (("t", t), ("x", X), ("v", V)):
+        if not np.all(np.isfinite(arr)):
+            k = int(np.argwhere(~np.isfinite(arr.reshape(-1, t.size)))[0][-1])
+            raise SolverError(f"the result is not finite at $.events[{k}] ({what}): the computation lost its meaning "
+                              "there (check the model's parameters, or the solver's warnings above)")
+    # one %-template per line: t, kind, element, then x and v of every coordinate (repr: json's own form)
+    template = '{"t": %r, "kind": %s, "element": %s, "state": {' + ", ".join(
+        json.dumps(str(n)).replace("%", "%%") + ': {"x": %r, "v": %r}' for n in names) + "}}"
+    kinds = {k: json.dumps(k) for k in {e.kind for e in events}}
+    elems = {k: json.dumps(k) for k in {e.element for e in events}}
+    XV = np.empty((t.size, 2 * len(names)))
+    XV[:, 0::2], XV[:, 1::2] = X.T, V.T
+    rows, tl = XV.tolist(), t.tolist()
+    lines = [template % (tl[k], kinds[e.kind], elems[e.element], *rows[k]) for k, e in enumerate(events)]
+    return Raw("[\n    " + ",\n    ".join(lines) + "\n  ]", len(lines))
+
+
+def linearisation_data(study) -> list | None:
+    """What the linear analysis did with each nonsmooth element (None: the file has none)."""
+    return study.linearisation
 
 
 def run_up_data(study, res) -> dict:
@@ -191,10 +283,10 @@ def _rotor_forced(res) -> dict:
     probes = d.pop("probes")
     w = res.speeds_rad_s
     d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi),
-              "outputs": [f"{p['direction']}@x={p['x']:g}" for p in probes],
+              "outputs": [p["label"] for p in probes],
               "amplitude": [p["amplitude"] for p in probes], "phase_lag_deg": [p["phase_lag_deg"] for p in probes],
-              "response": [pr.value for pr in res.probes], "probes": [{"x": p["x"], "direction": p["direction"]}
-                                                                     for p in probes],
+              "response": [pr.value for pr in res.probes],
+              "probes": [{"x": p["x"], "direction": p["direction"], "name": p["name"]} for p in probes],
               "damping": "bearing and seal coefficients (no global damping)", "steady": False})
     return d
 

@@ -13,12 +13,26 @@ import numpy as np
 from discrete.errors import SolverError
 
 
+class Raw:
+    """A piece of JSON text already written and checked by its producer (a long list of records built
+    from arrays in one pass, e.g. a simulation's events): :func:`encode` passes it through and
+    :func:`write_json` splices it in.  ``n``: its number of items (``len``)."""
+
+    __slots__ = ("text", "n")
+
+    def __init__(self, text: str, n: int = 0):
+        self.text, self.n = text, n
+
+    def __len__(self) -> int:
+        return self.n
+
+
 def encode(obj, path="$"):
     """``obj`` as plain JSON data; raises :class:`SolverError` at the first non-finite number.
     ``path`` names the place in error messages; it is built only then (``_where``): below the
     top it is a chain of (parent, separator, key) tuples, cheap for the millions of numbers of a
     long simulation's events."""
-    if obj is None or isinstance(obj, (bool, str)):
+    if obj is None or isinstance(obj, (bool, str, Raw)):
         return obj
     if isinstance(obj, (np.bool_,)):
         return bool(obj)
@@ -68,7 +82,17 @@ def write_json(path, data, encoded: bool = False) -> Path:
     """Write ``data`` atomically to ``path``; ``encoded``: it is already the result of
     :func:`encode` (not encoded twice: a long simulation's events take seconds)."""
     path = Path(path)
-    text = json.dumps(data if encoded else encode(data), indent=2, allow_nan=False) + "\n"
+    raws: list = []
+
+    def placeholder(obj):
+        if isinstance(obj, Raw):
+            raws.append(obj.text)
+            return f"\x00raw{len(raws) - 1}\x00"
+        raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+
+    text = json.dumps(data if encoded else encode(data), indent=2, allow_nan=False, default=placeholder) + "\n"
+    for k, raw in enumerate(raws):
+        text = text.replace(json.dumps(f"\x00raw{k}\x00"), raw, 1)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(text)

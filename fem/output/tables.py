@@ -1,6 +1,4 @@
-"""Text tables printed by the command line (they take results, never recompute them).  ``out``: a text
-stream, default the ``sys.stdout`` of the moment of the call (not of the import: a test harness or a
-caller may replace and close streams in between)."""
+"""Text tables printed by the command line (they take results, never recompute them)."""
 from __future__ import annotations
 
 import sys
@@ -9,7 +7,7 @@ import numpy as np
 
 
 def modal_table(study, res, out=None) -> None:
-    out = sys.stdout if out is None else out
+    out = sys.stdout if out is None else out      # bound at call time (a captured stream may close)
     if study.kind == "drive":
         print((study.title + "\n" if study.title else "") + res.table(), file=out)
         return
@@ -40,7 +38,7 @@ def dunkerley_line(bound: float, omega1: float) -> str:
 
 
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
-    out = sys.stdout if out is None else out
+    out = sys.stdout if out is None else out      # bound at call time (a captured stream may close)
     from discrete.steady import AFCResult
 
     if isinstance(res, AFCResult) or study.kind == "drive":
@@ -61,8 +59,59 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
               file=out)
 
 
-def simulation_summary(title: str, d: dict, out=None) -> None:
+def outputs_lines(d: dict, out=None, limit: int = 12) -> None:
+    """The named outputs of a command's JSON ``d`` (``named_outputs``), one line each up to ``limit``:
+    time histories -- peak, mean, rms, peak-to-peak, dynamic load factor, and per element its impacts and
+    friction work; frequency responses and [steady] curves -- the largest amplitude and where; modes --
+    how many load shapes were written."""
     out = sys.stdout if out is None else out
+    outs = d.get("named_outputs") or {}
+    for note in d.get("named_outputs_notes") or ():
+        print(f"note: {note}", file=out)
+    if not outs:
+        return
+    first = next(iter(outs.values()))
+    if "modes" in first:
+        print(f"load shapes of {len(outs)} named outputs per mode in the JSON (named_outputs) and the CSV", file=out)
+        return
+    if "rms" in first:
+        print(f"{'output':<34} {'unit':>15} {'peak':>12} {'mean':>12} {'rms':>12} {'peak-peak':>12} {'DLF':>8}",
+              file=out)
+    else:
+        print(f"{'output':<40} {'unit':>15} {'max amplitude':>14} {'at omega [rad/s]':>17}", file=out)
+    for k, (name, o) in enumerate(outs.items()):
+        if k == limit:
+            print(f"... {len(outs) - limit} more outputs in the JSON/CSV", file=out)
+            break
+        if "rms" in o:
+            dlf = o.get("dynamic_load_factor")
+            print(f"{name[:34]:<34} {o['unit'][:15]:>15} {o['peak']:12.5g} {o['mean']:12.5g} {o['rms']:12.5g} "
+                  f"{o['peak_to_peak']:12.5g} {'' if dlf is None else format(dlf, '8.4g'):>8}", file=out)
+            continue
+        peak = o.get("max_amplitude", o.get("peak"))
+        w = o.get("at_omega_rad_s", o.get("peak_omega_rad_s", o.get("peak_speed_rad_s")))
+        print(f"{name[:40]:<40} {o['unit'][:15]:>15} {'' if peak is None else format(peak, '14.6g'):>14} "
+              f"{'' if w is None else format(w, '17.6g'):>17}", file=out)
+    for name, e in (d.get("element_summary") or {}).items():
+        parts = []
+        if "impacts" in e:
+            parts.append(f"{e['impacts']} impacts, impulse sum {e['impulse_sum']:.6g}")
+        if "friction_work" in e:
+            parts.append(f"friction work {e['friction_work']:.6g} (dissipated {e['friction_dissipated']:.6g})")
+        if parts:
+            print(f"{name}: " + "; ".join(parts), file=out)
+
+
+def linearisation_lines(records, out=None) -> None:
+    """What the linear analysis did with each nonsmooth element (never silently)."""
+    out = sys.stdout if out is None else out
+    for r in records or ():
+        how = "declared" if r["declared"] else "default"
+        print(f"linearised: {r['kind']} {r['element']!r} {r['state']} ({how}): {r['note']}", file=out)
+
+
+def simulation_summary(title: str, d: dict, out=None) -> None:
+    out = sys.stdout if out is None else out      # bound at call time (a captured stream may close)
     counts = ", ".join(f"{n} {k}" for k, n in sorted(d.get("event_counts", {}).items()))
     print(f"{title}\nsimulated to t = {d.get('t_end')} ({d.get('method', '')}); {len(d.get('events', []))} events"
           + (f" ({counts})" if counts else "") + f"; period = {d.get('period')}; energy error = {d.get('energy_error')}",

@@ -24,7 +24,7 @@ from discrete.errors import ModelError
 from discrete.linear_system import LinearSystem
 
 from . import elements as el
-from .model import BEARING_COEFFICIENTS, Rotor
+from .model import BEARING_COEFFICIENTS, Rotor, damping_not_dissipative
 from .tables import SpeedTable
 
 
@@ -57,6 +57,7 @@ class RotorSystem:
     _Bc: sp.csr_matrix | None = None
     _pattern: sp.csr_matrix | None = None
     _workspace: object = None                # the modal solver's reusable structures (fem.rotor.modal)
+    _pattern_data: dict = field(default_factory=dict, repr=False)   # id -> (K0 or C0, its data on the pattern)
 
     # ------------------------------------------------------------------ sizes and lookup
     @property
@@ -96,16 +97,26 @@ class RotorSystem:
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         if not self.tables:
             return np.zeros((s.size, 0))
-        return np.hstack([t.at(s) for t in self.tables])
+        c = np.hstack([t.at(s, check=False) for t in self.tables])
+        # the damping check of extrapolated and smoothing-spline values, all tables at once; the
+        # offending table's own check names it
+        checked = [j for j, t in enumerate(self.tables) if t.needs_damping_check(s)]
+        if checked:
+            vals = c.reshape(s.size, len(self.tables), 8)[:, checked, :].reshape(-1, 8).T
+            if damping_not_dissipative(vals) is not None:
+                for j in checked:
+                    self.tables[j].at(s)
+        return c
 
-    def stiffness_data(self, speeds) -> np.ndarray:
-        """(n_speeds, nnz) data of K(speed) on the common pattern."""
-        c = self.coefficients(speeds)
+    def stiffness_data(self, speeds, coefficients: np.ndarray | None = None) -> np.ndarray:
+        """(n_speeds, nnz) data of K(speed) on the common pattern (``coefficients``: those of
+        :meth:`coefficients` at ``speeds`` when the caller has them already)."""
+        c = self.coefficients(speeds) if coefficients is None else coefficients
         base = self._on_pattern(self.K0)
         return base[None, :] + (self._Bk @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
 
-    def damping_data(self, speeds) -> np.ndarray:
-        c = self.coefficients(speeds)
+    def damping_data(self, speeds, coefficients: np.ndarray | None = None) -> np.ndarray:
+        c = self.coefficients(speeds) if coefficients is None else coefficients
         base = self._on_pattern(self.C0)
         return base[None, :] + (self._Bc @ c.T).T if self.tables else np.repeat(base[None, :], c.shape[0], 0)
 
@@ -115,7 +126,16 @@ class RotorSystem:
         return self._pattern
 
     def _on_pattern(self, A: sp.csr_matrix) -> np.ndarray:
-        return _data_on(self._pattern, A)
+        """A's data on the common pattern; cached for the constant matrices (K0, C0: read at every
+        speed), keyed by the matrix object."""
+        hit = self._pattern_data.get(id(A))
+        if hit is not None and hit[0] is A:
+            return hit[1]
+        data = _data_on(self._pattern, A)
+        if A is self.K0 or A is self.C0:
+            data.flags.writeable = False
+            self._pattern_data[id(A)] = (A, data)        # holding A keeps its id unique
+        return data
 
     def _from_data(self, data: np.ndarray) -> sp.csr_matrix:
         P = self._pattern
@@ -126,6 +146,13 @@ class RotorSystem:
 
     def damping(self, speed: float = 0.0) -> sp.csr_matrix:
         return self.C0 if not self.tables else self._from_data(self.damping_data(speed)[0])
+
+    def stiffness_and_damping(self, speed: float = 0.0) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """K(speed) and C(speed), the bearing tables evaluated once for both."""
+        if not self.tables:
+            return self.K0, self.C0
+        c = self.coefficients(speed)
+        return (self._from_data(self.stiffness_data(speed, c)[0]), self._from_data(self.damping_data(speed, c)[0]))
 
     def system_at(self, speed: float = 0.0) -> LinearSystem:
         """The linear system M q'' + (C + speed G) q' + K q = f at ``speed`` (rad/s): K and C

@@ -7,11 +7,24 @@ frequency-distance term that only breaks ties between equal-MAC candidates, e.g.
 pairs of a repeated frequency at zero speed).  So a column of the result follows one mode
 through crossings and veerings instead of sorting frequencies.
 
-Critical speeds of order k (k = 1: synchronous, 2: twice per revolution, 0.5 ...): for each
+Crossings of order k (k = 1: synchronous, 2: twice per revolution, 0.5 ...): for each
 tracked mode the sign changes of g(Omega) = omega_j(Omega) - k Omega on the grid bracket the
 roots, which are then found by Brent's method, each evaluation a modal solve at that speed
 with the mode picked by MAC against the bracket's shape.  The grid only brackets; the root is
-converged to ``xtol`` (relative 1e-10 by default).
+converged to ``xtol`` (relative 1e-10 by default).  Modes that do not oscillate have no critical
+speed: rigid-body modes, and at rest the modes with a real eigenvalue (omega_d = 0: bearing modes
+that are overdamped at low speed), whose omega_d = 0 = k Omega there is the origin of the
+diagram, not a resonance (orders are > 0).  Once such a mode oscillates, its crossings are roots
+like any other (with their damping reported).
+
+**Critical speeds are the forward crossings.**  Unbalance (and its harmonics) is a force that
+turns with the shaft: forward.  On a rotor whose supports are rotationally symmetric (every
+bearing and pedestal with K = [[a, b], [-b, a]], C alike: the isotropic rotor) forward and
+backward whirl decouple exactly, so a backward-whirl mode crossing k Omega is not excited by
+unbalance at all (Friswell et al. 2010, §6.3; Genta 2005, §4.7): ``critical_speeds`` are the
+crossings of forward (and mixed) modes, ``backward_crossings`` the others, listed apart.  On
+anisotropic supports a backward mode couples to the forward force and can respond (weakly):
+``isotropic_supports`` says which case holds; the crossings stay listed apart either way.
 """
 from __future__ import annotations
 
@@ -21,6 +34,7 @@ import numpy as np
 from scipy.optimize import brentq, linear_sum_assignment
 
 from discrete.errors import ModelError
+from discrete.linalg.blas import single_threaded_blas
 
 from .modal import RotorEigen, RotorModes, as_system, check_speed, eigen_workspace
 from .whirl import mac
@@ -73,13 +87,27 @@ class CampbellResult:
     kind: list                  # per tracked mode
     mac_min: np.ndarray         # (n_speeds,) worst MAC of the tracking step into each speed
     residual_max: np.ndarray    # (n_speeds,)
-    critical_speeds: list = field(default_factory=list)
+    crossings: list = field(default_factory=list)     # every root of omega_j = k Omega, any whirl
     orders: tuple = (1.0,)
     warnings: list = field(default_factory=list)
+    isotropic_supports: bool | None = None    # every support rotationally symmetric (None: not known)
+    shapes: list = field(default_factory=list, repr=False)       # per speed: (n_dofs, n_modes) tracked complex
+    #                                                              shapes (largest DOF 1), not in to_dict
+    eigenvalues: np.ndarray | None = field(default=None, repr=False)   # (n_speeds, n_modes) their lambda
 
     @property
     def n_modes(self) -> int:
         return self.omega_damped_rad_s.shape[1]
+
+    @property
+    def critical_speeds(self) -> list:
+        """The critical speeds: crossings of forward (or mixed) whirling modes (module notes)."""
+        return [c for c in self.crossings if c.whirl != "backward"]
+
+    @property
+    def backward_crossings(self) -> list:
+        """Crossings of backward-whirl modes: not excited by unbalance on isotropic supports."""
+        return [c for c in self.crossings if c.whirl == "backward"]
 
     def to_dict(self) -> dict:
         ld = np.where(np.isfinite(self.log_decrement), self.log_decrement, np.nan)
@@ -91,7 +119,8 @@ class CampbellResult:
                 "whirl": [list(col) for col in zip(*self.whirl)], "kind": list(self.kind),
                 "mac_min": self.mac_min.tolist(), "residual_max": self.residual_max.tolist(),
                 "orders": list(self.orders), "critical_speeds": [c.to_dict() for c in self.critical_speeds],
-                "warnings": list(self.warnings)}
+                "backward_crossings": [c.to_dict() for c in self.backward_crossings],
+                "isotropic_supports": self.isotropic_supports, "warnings": list(self.warnings)}
 
 
 def _speeds(speeds, where="[analysis]") -> np.ndarray:
@@ -144,10 +173,26 @@ def _assign(prev_shapes, prev_freq, cand: RotorModes, n_track):
     return idx, M[np.arange(n_track), idx]
 
 
+def isotropic_supports(rotor) -> bool:
+    """Whether every bearing (at every table speed) and pedestal is rotationally symmetric:
+    K = [[a, b], [-b, a]] and C alike, so forward and backward whirl decouple (module notes)."""
+    from .model import Rotor
+
+    r = rotor if isinstance(rotor, Rotor) else rotor.rotor
+    for b in r.bearings:
+        t = b.table()
+        for a, d, o1, o2 in (("kyy", "kzz", "kyz", "kzy"), ("cyy", "czz", "cyz", "czy")):
+            if not (np.array_equal(t[a], t[d]) and np.array_equal(t[o1], -t[o2])):
+                return False
+    return all(p.kyy == p.kzz and p.cyy == p.czz for p in r.pedestals)
+
+
 def campbell(rotor, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool = True,
-             tolerance: float = 1e-6, xtol: float = 1e-10) -> CampbellResult:
+             tolerance: float = 1e-6, xtol: float = 1e-10, progress=None) -> CampbellResult:
     """Campbell diagram of ``rotor`` over ``speeds`` (rad/s, increasing, >= 0): ``n_modes``
-    tracked modes, and (``critical``) the critical speeds of the given ``orders`` inside the range."""
+    tracked modes, and (``critical``) the crossings omega_j = k Omega of the given ``orders``
+    inside the range (``critical_speeds``: forward whirl; ``backward_crossings``).
+    ``progress(done, total)`` is called after each speed's solve and each crossing refined."""
     rs = as_system(rotor)
     s = _speeds(speeds)
     orders = _orders(orders)
@@ -155,18 +200,23 @@ def campbell(rotor, speeds, n_modes: int = 6, *, orders=(1.0,), critical: bool =
     n_cand = min(n_modes + _extra(n_modes), rs.n_dofs - rs.constrained.size)
     eig.solver.sweep(True)                  # warm starts from speed to speed (reproducible per diagram)
     try:
-        result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol)
+        # one BLAS thread: the tracking's products are tiny (n x 24); a second OpenBLAS thread only
+        # adds its wake-up, which on a loaded 2-core machine cost 70-100 ms per MAC matrix (measured)
+        with single_threaded_blas():
+            result = _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol, progress)
     finally:
         eig.solver.sweep(False)
+    result.isotropic_supports = isotropic_supports(rs)
     return result
 
 
-def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol):
+def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol, progress=None):
     ns = s.size
     wd = np.zeros((ns, n_modes))
     wn, ld, zeta = np.zeros_like(wd), np.zeros_like(wd), np.zeros_like(wd)
     whirl, mac_min, res_max = [], np.ones(ns), np.zeros(ns)
     shapes_track = []
+    lam = np.zeros((ns, n_modes), dtype=complex)
     warnings = []
     prev = prev_f = None
     kinds = None
@@ -189,15 +239,18 @@ def _track(eig, s, n_modes, n_cand, tolerance, orders, critical, xtol):
         res_max[i] = float(m.residuals.max())
         prev, prev_f = m.shapes[:, idx], m.natural_frequency_rad_s[idx]
         shapes_track.append(prev)
+        if progress is not None:
+            progress(i + 1, ns)
+        lam[i] = m.eigenvalues[idx]
     result = CampbellResult(speeds_rad_s=s, omega_damped_rad_s=wd, natural_frequency_rad_s=wn, log_decrement=ld,
                             damping_ratio=zeta, whirl=whirl, kind=kinds, mac_min=mac_min, residual_max=res_max,
-                            orders=orders, warnings=warnings)
+                            orders=orders, warnings=warnings, shapes=shapes_track, eigenvalues=lam)
     if critical:
-        result.critical_speeds = _critical_speeds(eig, result, shapes_track, n_cand, tolerance, xtol)
+        result.crossings = _critical_speeds(eig, result, shapes_track, n_cand, tolerance, xtol, progress)
     return result
 
 
-def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tolerance, xtol) -> list:
+def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tolerance, xtol, progress=None) -> list:
     s = camp.speeds_rad_s
     cache = {}
 
@@ -207,6 +260,12 @@ def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tole
         return cache[speed]
 
     out = []
+    n_brackets, done = 0, 0
+    for k in camp.orders:
+        for j in range(camp.n_modes):
+            if camp.kind[j] != "rigid":
+                g = camp.omega_damped_rad_s[:, j] - k * s
+                n_brackets += int(np.count_nonzero((g[:-1] == 0) | (g[:-1] * g[1:] < 0)))
     for k in camp.orders:
         for j in range(camp.n_modes):
             if camp.kind[j] == "rigid":
@@ -214,6 +273,11 @@ def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tole
             g = camp.omega_damped_rad_s[:, j] - k * s
             for i in range(s.size - 1):
                 if not (g[i] == 0 or g[i] * g[i + 1] < 0):
+                    continue
+                if g[i] == 0 and camp.omega_damped_rad_s[i, j] == 0.0:
+                    # omega = k Omega = 0 at rest: a mode that does not oscillate there (a real
+                    # eigenvalue: an overdamped bearing mode) meets the line at its origin, which is
+                    # no resonance; a crossing after it, once the mode oscillates, is bracketed next
                     continue
                 ref = shapes[i][:, j]
                 picked = {}
@@ -249,14 +313,19 @@ def _critical_speeds(eig: RotorEigen, camp: CampbellResult, shapes, n_cand, tole
                 if quality < MAC_WARN:
                     camp.warnings.append(f"critical speed near {root:.6g} rad/s (mode {j + 1}, order {k:g}): the mode "
                                          f"at the root matches the tracked shape only with MAC {quality:.2f}")
+                if progress is not None:
+                    done += 1
+                    progress(s.size + done, s.size + n_brackets)
     out.sort(key=lambda c: (c.order, c.speed_rad_s))
     return out
 
 
 def critical_speeds(rotor, speed_max: float, n_modes: int = 6, *, orders=(1.0,), n_grid: int = 41,
                     tolerance: float = 1e-6, xtol: float = 1e-10) -> list:
-    """Critical speeds of the given ``orders`` between 0 and ``speed_max`` (rad/s, > 0): roots of
-    omega_j(Omega) = k Omega of the lowest ``n_modes`` tracked modes, bracketed on ``n_grid`` speeds."""
+    """Crossings of the given ``orders`` between 0 and ``speed_max`` (rad/s, > 0): every root of
+    omega_j(Omega) = k Omega of the lowest ``n_modes`` tracked modes, bracketed on ``n_grid`` speeds,
+    forward and backward whirl (:attr:`CriticalSpeed.whirl`; the critical speeds proper are the
+    forward ones: :attr:`CampbellResult.critical_speeds`)."""
     speed_max = check_speed(speed_max, key="speed_max", positive=True)
     return campbell(rotor, np.linspace(0.0, speed_max, int(n_grid)), n_modes, orders=orders,
-                    tolerance=tolerance, xtol=xtol).critical_speeds
+                    tolerance=tolerance, xtol=xtol).crossings

@@ -168,3 +168,95 @@ def critical_speed_map(rotor: Rotor, stiffness, n: int = 4) -> CriticalSpeedMap:
             t = b.table()
             curves.append({"bearing": b_no, "x": b.x, "speeds_rad_s": b.speed_grid, "kyy": t["kyy"], "kzz": t["kzz"]})
     return CriticalSpeedMap(stiffness=ks, speeds_rad_s=out, whirl=whirl, bearing_curves=curves, warnings=notes)
+
+
+def forward_columns(cmap: CriticalSpeedMap, n: int, backward: bool = False) -> np.ndarray:
+    """(n_stiffness, n): the lowest ``n`` forward (not backward) critical speeds of each row of the
+    map, rad/s, NaN where fewer; a repeated pair (no gyroscopic split) counts once.  ``backward``:
+    keep the backward ones too (anisotropic pedestals: forward and backward whirl couple, the
+    classification of elliptic orbits changes along the map and the unbalance excites both)."""
+    out = np.full((cmap.stiffness.size, n), np.nan)
+    for i in range(cmap.stiffness.size):
+        row = [w for w, h in zip(cmap.speeds_rad_s[i], cmap.whirl[i])
+               if np.isfinite(w) and (backward or h != "backward")]
+        keep = []
+        for w in sorted(row):
+            if not keep or abs(w - keep[-1]) > 1e-7 * w:
+                keep.append(w)
+        out[i, :min(n, len(keep))] = keep[:n]
+    return out
+
+
+def _log_interp(k, ks, S):
+    """S(k) of a map column, interpolated linearly in log k and log S (NaN outside)."""
+    ok = np.isfinite(S)
+    if ok.sum() < 2 or not ks[ok][0] <= k <= ks[ok][-1]:
+        return np.nan
+    return float(np.exp(np.interp(np.log(k), np.log(ks[ok]), np.log(S[ok]))))
+
+
+def bearing_overlay(rotor, cmap: CriticalSpeedMap, forward: np.ndarray, speeds=None) -> tuple[list, list]:
+    """The model's own bearings on the map: per bearing and direct coefficient (kyy, kzz) a constant
+    stiffness or its curve k(speed) over ``speeds`` (rad/s; tabulated bearings, interpolated as the
+    model does), and the intersections with the forward critical-speed curves: speeds where
+    Omega = S_j(k_b(Omega)), the classical reading of the map (exact for identical isotropic
+    bearings; an estimate when the bearings differ, since the map varies all of them together)."""
+    if isinstance(rotor, RotorSystem):
+        rotor = rotor.rotor
+    rs = assemble_rotor(rotor)
+    ks = cmap.stiffness
+    overlay, points = [], []
+    for b_no, b in enumerate(rotor.bearings, 1):
+        name = b.name or f"bearing {b_no}"
+        if b.speed_dependent:
+            t = rs.tables[[tb.index for tb in rs.tables].index(b_no)]
+            s = np.linspace(t.grid[0], t.grid[-1], 200) if speeds is None else np.asarray(speeds, float)
+            coeff = t.at(s)
+            curves = {"kyy": coeff[:, 0], "kzz": coeff[:, 3]}
+        else:
+            tab = b.table()
+            s, curves = None, {"kyy": float(tab["kyy"][0]), "kzz": float(tab["kzz"][0])}
+        iso = np.array_equal(np.asarray(curves["kyy"]), np.asarray(curves["kzz"]))
+        for kind, kb in curves.items():
+            if kind == "kzz" and iso:
+                continue                                      # isotropic: one line
+            if np.all(np.asarray(kb) <= 0):
+                continue
+            kind = "k" if iso else kind
+            overlay.append({"name": name, "kind": kind, "stiffness": kb if s is None else np.asarray(kb),
+                            "speeds_rad_s": s})
+            for j in range(forward.shape[1]):
+                if s is None:
+                    w = _log_interp(kb, ks, forward[:, j])
+                    if np.isfinite(w):
+                        points.append({"name": name, "kind": kind, "mode": j + 1, "stiffness": kb, "speed_rad_s": w})
+                    continue
+                g = np.array([_log_interp(k_, ks, forward[:, j]) - w_ if k_ > 0 else np.nan for k_, w_ in zip(kb, s)])
+                for i in np.flatnonzero(np.isfinite(g[:-1]) & np.isfinite(g[1:]) & (g[:-1] * g[1:] <= 0)):
+                    a = g[i] / (g[i] - g[i + 1]) if g[i] != g[i + 1] else 0.0
+                    w = float(s[i] + a * (s[i + 1] - s[i]))
+                    points.append({"name": name, "kind": kind, "mode": j + 1,
+                                   "stiffness": float(kb[i] + a * (kb[i + 1] - kb[i])), "speed_rad_s": w})
+    return overlay, points
+
+
+def merge_identical(overlay: list, points: list) -> tuple[list, list]:
+    """Bearings with the same stiffness (constant or curve) drawn and listed once, their names joined."""
+    def key(c):
+        k = c["stiffness"]
+        return (c["kind"], tuple(np.round(np.atleast_1d(k), 9)), None if c["speeds_rad_s"] is None
+                else tuple(np.round(np.asarray(c["speeds_rad_s"]), 9)))
+
+    groups: dict = {}
+    for c in overlay:
+        groups.setdefault(key(c), []).append(c)
+    merged = [dict(g[0], name=", ".join(c["name"] for c in g)) for g in groups.values()]
+    names = {c["name"]: m["name"] for m in merged for c in groups[key(m)]}
+    seen, pts = set(), []
+    for p in points:
+        q = dict(p, name=names.get(p["name"], p["name"]))
+        k = (q["name"], q["kind"], q["mode"], round(q["speed_rad_s"], 6))
+        if k not in seen:
+            seen.add(k)
+            pts.append(q)
+    return merged, pts

@@ -16,7 +16,7 @@ from discrete.linear.complex_modal import ComplexModalResult, ComplexModeFigures
 
 from .assembly import RotorSystem, assemble_rotor
 from .model import Rotor
-from .whirl import Orbits, classify_orbits
+from .whirl import Orbits, classify_many
 
 
 @dataclass
@@ -92,17 +92,15 @@ def describe_modes(rs: RotorSystem, res: ComplexModalResult) -> RotorModes:
     iv, iw = rs.node_dofs["v"], rs.node_dofs["w"]
     V, W = res.shapes[iv].T, res.shapes[iw].T                  # (n_modes, n_nodes)
     orb = Orbits.of(V, W)
-    whirl, ratio = [], []
     kind = _kinds(rs, res.shapes, res.rigid)
-    for r, k in enumerate(kind):
-        if k == "lateral":
-            w, q = classify_orbits(Orbits(orb.forward[r], orb.backward[r], orb.angle[r]))
-        else:
-            w, q = "none", 0.0
-        whirl.append(w)
-        ratio.append(q)
+    lateral = [r for r, k in enumerate(kind) if k == "lateral"]
+    whirl, ratio = ["none"] * len(kind), np.zeros(len(kind))
+    if lateral:
+        labels, overall = classify_many(Orbits(orb.forward[lateral], orb.backward[lateral], orb.angle[lateral]))
+        for r, w, q in zip(lateral, labels, overall):
+            whirl[r], ratio[r] = w, q
     return RotorModes(speed_rad_s=res.speed, eigenvalues=res.eigenvalues, shapes=res.shapes, node_x=rs.node_x,
-                      whirl=whirl, whirl_ratio=np.asarray(ratio), kind=kind, orbit_major=orb.major,
+                      whirl=whirl, whirl_ratio=ratio, kind=kind, orbit_major=orb.major,
                       orbit_minor=orb.minor, orbit_angle=orb.angle, orbit_forward=orb.forward > orb.backward,
                       residuals=res.residuals, rigid=res.rigid, tolerance=res.tolerance, method=res.method,
                       n_dofs=res.n_dofs, warnings=list(res.warnings))
@@ -118,8 +116,7 @@ class RotorEigen:
 
     def modes(self, speed: float, n_modes: int, tolerance: float = 1e-6) -> RotorModes:
         rs = self.rs
-        K = rs.stiffness(speed) if rs.speed_dependent else None
-        C = rs.damping(speed) if rs.speed_dependent else None
+        K, C = rs.stiffness_and_damping(speed) if rs.speed_dependent else (None, None)
         res = self.solver.solve(n_modes, speed=speed, K=K, C=C, tolerance=tolerance)
         return describe_modes(rs, res)
 

@@ -29,11 +29,13 @@ LATERAL = ("v", "w", "theta_y", "theta_z")
 #: to the pedestal when there is one), K = [[kyy, kyz], [kzy, kzz]], C = [[cyy, cyz], [czy, czz]]
 BEARING_COEFFICIENTS = ("kyy", "kyz", "kzy", "kzz", "cyy", "cyz", "czy", "czz")
 #: linear; pchip (shape-preserving cubic, Fritsch-Carlson); spline (cubic spline through the points,
-#: not-a-knot ends: FITPACK's interpolating spline, what ROSS's smoothing spline tends to)
-INTERPOLATIONS = ("linear", "pchip", "spline")
+#: not-a-knot ends); smoothing-spline (ROSS's convention: scipy's UnivariateSpline, a cubic smoothing
+#: spline with s = number of points -- not an interpolant, it misses the table's points)
+INTERPOLATIONS = ("linear", "pchip", "spline", "smoothing-spline")
 #: a speed outside a table: refuse (an error), hold (the end value), linear (the tangent line of the
-#: interpolant at the table's end: for linear interpolation the end segment's line)
-EXTRAPOLATIONS = ("refuse", "hold", "linear")
+#: interpolant at the table's end: for linear interpolation the end segment's line), continue (the
+#: interpolant's end pieces continued: for smoothing-spline ROSS's extrapolation)
+EXTRAPOLATIONS = ("refuse", "hold", "linear", "continue")
 
 
 def _finite(value, key: str, where: str, *, minimum: float | None = None, strict: bool = False) -> float:
@@ -251,10 +253,13 @@ class Bearing:
     Force on the shaft: f = -K d - C d', K = [[kyy, kyz], [kzy, kzz]] (N/m), C = [[cyy, cyz],
     [czy, czz]] (N s/m).  Each coefficient is a number (constant) or a table over ``speeds``
     (rad/s, increasing): the coefficient at a speed is interpolated (``interpolation`` =
-    "linear", "pchip" (shape-preserving cubic) or "spline" (cubic spline, not-a-knot)); a speed
-    outside the table follows ``extrapolate``: "refuse" (an error, the default), "hold" (the end
-    values) or "linear" (the interpolant's tangent line at the table's end), with a warning that
-    names the bearing and the speeds outside its table.
+    "linear", "pchip" (shape-preserving cubic), "spline" (cubic spline, not-a-knot) or
+    "smoothing-spline" (ROSS's convention: scipy's UnivariateSpline with s = number of points, which
+    misses the table's points; :mod:`fem.rotor.tables`)); a speed outside the table follows
+    ``extrapolate``: "refuse" (an error, the default), "hold" (the end values), "linear" (the
+    interpolant's tangent line at the table's end) or "continue" (the interpolant's end pieces
+    continued: ROSS's extrapolation with "smoothing-spline"), with a warning that names the bearing
+    and the speeds outside its table.
 
     Signs: stiffness coefficients, direct or cross-coupled, take any sign (a seal's direct
     stiffness can be negative -- labyrinth seals, Lomakin effect --, so can an extrapolated
@@ -263,7 +268,7 @@ class Bearing:
     cyy czz >= ((cyz + czy)/2)^2): the power the bearing's damping force takes from the shaft,
     d'^T C d', is then >= 0, which the energy balances of run-ups count on; the skew part
     (cross-coupled damping of seals) does no work and is free.  A bearing needs some nonzero
-    direct coefficient.  ``k_axial``, ``c_axial`` (N/m, N s/m, >= 0): a thrust bearing on u
+    coefficient (cross-coupled stiffness alone: an aerodynamic cross-coupling).  ``k_axial``, ``c_axial`` (N/m, N s/m, >= 0): a thrust bearing on u
     (``dofs = "full"`` only)."""
 
     x: float
@@ -303,9 +308,9 @@ class Bearing:
             j, key = bad
             at = f" at {self.speed_grid[j]:g} rad/s" if self.speeds is not None else ""
             raise ModelError(where, key, float(table[key][j]), DAMPING_RULE + at)
-        if not any(np.any(table[k] != 0) for k in ("kyy", "kzz", "cyy", "czz")):
-            raise ModelError(where, "kyy", 0.0, "a bearing with some direct stiffness or damping "
-                             "(kyy, kzz, cyy or czz > 0): all direct coefficients are zero")
+        if not any(np.any(table[k] != 0) for k in BEARING_COEFFICIENTS):
+            raise ModelError(where, "kyy", 0.0, "a bearing with some nonzero coefficient (direct, or cross-coupled "
+                             "only: an aerodynamic cross-coupling): all coefficients are zero")
         _finite(self.k_axial, "k_axial", where, minimum=0.0)
         _finite(self.c_axial, "c_axial", where, minimum=0.0)
 

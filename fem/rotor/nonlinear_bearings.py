@@ -32,7 +32,8 @@ from .bearings.static_load import GRAVITY
 @dataclass
 class BearingHistory:
     """One nonlinear bearing over a run: the journal's ``y``, ``z`` relative to the bearing (m),
-    its ``eccentricity`` ratio |r| / clearance, the force magnitude ``force`` on the shaft (N)."""
+    its ``eccentricity`` ratio |r| / clearance, the force magnitude ``force`` on the shaft (N) and its
+    components ``force_y``, ``force_z`` (N; evaluated at most at 2000 samples, interpolated between)."""
 
     name: str
     kind: str
@@ -42,6 +43,8 @@ class BearingHistory:
     z: np.ndarray
     eccentricity: np.ndarray
     force: np.ndarray
+    force_y: np.ndarray | None = None
+    force_z: np.ndarray | None = None
 
     def to_dict(self) -> dict:
         return {"name": self.name, "kind": self.kind, "x": self.x, "clearance": self.clearance,
@@ -187,8 +190,11 @@ def histories(rs: RotorSystem, bearings, els, eta_h: np.ndarray, v_h: np.ndarray
         y, z = eta_h @ e.g_y, eta_h @ e.g_z
         yd, zd = v_h @ e.g_y, v_h @ e.g_z
         # the force at (at most) 2000 samples, interpolated between (a finite film solves per evaluation)
-        Fp = np.array([np.hypot(*e.force(y[k], z[k], yd[k], zd[k], speed[k], angle[k])) for k in pick])
+        Fc = np.array([e.force(y[k], z[k], yd[k], zd[k], speed[k], angle[k]) for k in pick]).reshape(-1, 2)
+        Fp = np.hypot(Fc[:, 0], Fc[:, 1])
         F = np.interp(np.arange(n), pick, Fp) if n else np.zeros(0)
+        Fy, Fz = ((np.interp(np.arange(n), pick, Fc[:, j]) for j in (0, 1)) if n else (np.zeros(0), np.zeros(0)))
         out.append(BearingHistory(name=e.name, kind=b.kind, x=float(b.x), clearance=float(b.clearance), y=y, z=z,
+                                  force_y=Fy, force_z=Fz,
                                   eccentricity=np.hypot(y, z) / b.clearance, force=F))
     return out

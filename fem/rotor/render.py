@@ -25,6 +25,8 @@ from .assembly import RotorSystem
 WINDOW = (1200, 700)
 DISPLAY_AMPLITUDE = 0.12     # largest whirl radius drawn as this fraction of the length
 MIN_RADIUS = 0.012           # tube radius at least this fraction of the length
+MAX_DISC = 0.22              # disc radius drawn at most this fraction of the length (a big fan would hide the shaft)
+WHIRL_COLOUR = {"forward": (0.12, 0.47, 0.71), "backward": (0.84, 0.15, 0.16)}
 PER_ELEMENT = 6
 GIF_FRAMES = 24
 
@@ -99,7 +101,7 @@ def _scene_parts(rs: RotorSystem, phi: np.ndarray, theta: float, scale: float):
         # axis of the disc: the deformed tangent (theta_z = dv/dx, theta_y = -dw/dx)
         ax_ = np.array([1.0, scale * (phi[nd["theta_z"][i]] * e).real, -scale * (phi[nd["theta_y"][i]] * e).real])
         rd = np.sqrt(2 * d.Ip / d.mass) if d.mass > 0 and d.Ip > 0 else 2.5 * r_shaft
-        discs.append(_disc_mesh(c, ax_, max(rd, 2.0 * r_shaft), max(0.015 * L, 0.5 * r_shaft)))
+        discs.append(_disc_mesh(c, ax_, min(max(rd, 2.0 * r_shaft), MAX_DISC * L), max(0.015 * L, 0.5 * r_shaft)))
     parts["discs"] = discs
     return parts
 
@@ -116,6 +118,37 @@ def _orbit_lines(rs: RotorSystem, phi: np.ndarray, scale: float, n: int = 97):
         y, z = scale * (phi[nd["v"][i]] * t).real, scale * (phi[nd["w"][i]] * t).real
         out.append(pv.lines_from_points(np.column_stack([np.full(n, rs.node_x[i]), y, z])))
     return out
+
+
+def _arc_arrow(x0: float, radius: float, sense: float, colour, start: float = 0.0):
+    """A 3/4 circle about the +x axis at x0 with an arrowhead: ``sense`` +1 turns from +y towards +z
+    (the spin's sense), -1 the other way."""
+    import pyvista as pv
+
+    a = start + sense * np.linspace(0.0, 1.5 * np.pi, 48)
+    arc = np.column_stack([np.full(a.size, x0), radius * np.cos(a), radius * np.sin(a)])
+    tangent = sense * np.array([0.0, -np.sin(a[-1]), np.cos(a[-1])])
+    head = pv.Cone(center=arc[-1] + 0.18 * radius * tangent, direction=tangent, height=0.36 * radius,
+                   radius=0.14 * radius, resolution=16)
+    return [(pv.Spline(arc, 96).tube(radius=0.025 * radius), colour), (head, colour)]
+
+
+def _direction_marks(rs: RotorSystem, phi: np.ndarray, scale: float, whirl: str):
+    """The spin: a grey arc with an arrowhead about +x before the shaft's start; the whirl: a
+    coloured arc (blue forward, red backward) around the shaft where the orbit is largest, turning
+    the way the orbits run."""
+    nd = rs.node_dofs
+    V, W = phi[nd["v"]], phi[nd["w"]]
+    i = int(np.argmax(np.abs(V) + np.abs(W)))
+    L = rs.rotor.length
+    r_tube = max(float(np.max(_radius_at(rs, rs.node_x))), MIN_RADIUS * L)
+    marks = _arc_arrow(-0.06 * L, 2.2 * r_tube, 1.0, (0.3, 0.3, 0.3))
+    if whirl in WHIRL_COLOUR:
+        orbit = scale * float(np.abs(V[i]) + np.abs(W[i]))
+        x = float(np.clip(rs.node_x[i], 0.04 * L, 0.96 * L))
+        marks += _arc_arrow(x, orbit + 2.6 * r_tube, 1.0 if whirl == "forward" else -1.0, WHIRL_COLOUR[whirl],
+                            start=0.25 * np.pi)
+    return marks
 
 
 def _bearings(rs: RotorSystem, r_shaft: float):
@@ -135,11 +168,15 @@ def _scale(rs: RotorSystem, phi: np.ndarray) -> float:
     return DISPLAY_AMPLITUDE * rs.rotor.length / big
 
 
-def _title(modes, r) -> str:
+def _title(modes, r, model_title: str = "") -> str:
     ld = modes.log_decrement[r]
-    return (f"mode {r + 1}: {modes.omega_damped_rad_s[r]:.5g} rad/s ({modes.frequencies_hz[r]:.4g} Hz), "
-            f"{modes.whirl[r]} whirl, log dec {ld:.3g}\nspeed {modes.speed_rad_s * 30 / np.pi:.0f} rev/min; "
-            "colour: orbit size; lines: orbits over one period")
+    w = modes.whirl[r]
+    sense = {"forward": "FORWARD whirl (orbits turn with the spin)",
+             "backward": "BACKWARD whirl (orbits turn against the spin)"}.get(w, f"{w} whirl")
+    head = f"{model_title}\n" if model_title else ""
+    return (f"{head}mode {r + 1}: {modes.omega_damped_rad_s[r]:.5g} rad/s ({modes.frequencies_hz[r]:.4g} Hz), {sense}, "
+            f"log dec {ld:.3g}\nspeed {modes.speed_rad_s * 30 / np.pi:.0f} rev/min; grey arc: spin about +x; coloured arc: whirl "
+            "direction; colour: orbit size; lines: orbits over one period")
 
 
 def _plotter(window):
@@ -151,14 +188,16 @@ def _plotter(window):
     return p
 
 
-def _draw(p, rs, phi, theta, scale, title, font_size=11):
+def _draw(p, rs, phi, theta, scale, title, font_size=11, whirl=""):
     parts = _scene_parts(rs, phi, theta, scale)
     vmax = float(parts["shaft"].point_data["amplitude"].max()) or 1.0
     actors = {"shaft": p.add_mesh(parts["shaft"], scalars="amplitude", cmap="plasma", clim=(0, vmax),
                                   show_scalar_bar=False, smooth_shading=True, specular=0.3)}
-    actors["discs"] = [p.add_mesh(d, color=(0.35, 0.45, 0.6), smooth_shading=True) for d in parts["discs"]]
+    actors["discs"] = [p.add_mesh(d, color=(0.35, 0.45, 0.6), smooth_shading=True, opacity=0.55) for d in parts["discs"]]
     for line in _orbit_lines(rs, phi, scale):
         p.add_mesh(line, color=(0.15, 0.15, 0.15), line_width=1.5)
+    for mesh, colour in _direction_marks(rs, phi, scale, whirl):
+        p.add_mesh(mesh, color=colour, smooth_shading=True)
     r_shaft = max(float(np.max(_radius_at(rs, rs.node_x))), MIN_RADIUS * rs.rotor.length)
     for b in _bearings(rs, r_shaft):
         p.add_mesh(b, color=(0.6, 0.6, 0.6), opacity=0.8)
@@ -182,8 +221,9 @@ def _check_mode(modes, r):
         raise ModelError("render", "mode", r, f"a mode index from 0 to {modes.n_modes - 1}")
 
 
-def render_whirl(rs: RotorSystem, modes, r: int, path, *, theta: float = 0.0) -> Path:
-    """PNG of mode ``r`` (0-based) of ``modes`` (a :class:`fem.rotor.modal.RotorModes` of ``rs``)."""
+def render_whirl(rs: RotorSystem, modes, r: int, path, *, theta: float = 0.0, title: str = "") -> Path:
+    """PNG of mode ``r`` (0-based) of ``modes`` (a :class:`fem.rotor.modal.RotorModes` of ``rs``);
+    ``title``: the model's, above the mode's description."""
     _check_mode(modes, r)
     require()
     import imageio.v2 as imageio
@@ -192,7 +232,7 @@ def render_whirl(rs: RotorSystem, modes, r: int, path, *, theta: float = 0.0) ->
     scale = _scale(rs, phi)
     p = _plotter(WINDOW)
     try:
-        _draw(p, rs, phi, theta, scale, _title(modes, r))
+        _draw(p, rs, phi, theta, scale, _title(modes, r, title), whirl=modes.whirl[r])
         _camera(p, rs)
         img = np.asarray(p.screenshot(return_img=True))[..., :3]
     finally:
@@ -202,7 +242,7 @@ def render_whirl(rs: RotorSystem, modes, r: int, path, *, theta: float = 0.0) ->
     return path
 
 
-def render_whirl_gif(rs: RotorSystem, modes, r: int, path, *, frames: int = GIF_FRAMES) -> Path:
+def render_whirl_gif(rs: RotorSystem, modes, r: int, path, *, frames: int = GIF_FRAMES, title: str = "") -> Path:
     """Animated GIF of one period of mode ``r``: the geometry is built once and its points
     updated per frame; the camera stays fixed."""
     _check_mode(modes, r)
@@ -214,7 +254,7 @@ def render_whirl_gif(rs: RotorSystem, modes, r: int, path, *, frames: int = GIF_
     p = _plotter((WINDOW[0] // 2, WINDOW[1] // 2))
     images = []
     try:
-        parts, actors = _draw(p, rs, phi, 0.0, scale, _title(modes, r), font_size=7)
+        parts, actors = _draw(p, rs, phi, 0.0, scale, _title(modes, r, title), font_size=7, whirl=modes.whirl[r])
         _camera(p, rs)
         for k in range(frames):
             theta = 2 * np.pi * k / frames

@@ -46,10 +46,27 @@ class Probe:
 
     x: float
     direction: str = "major"
+    name: str = ""
+    """The output's name (default: the name of the disc, bearing or coupling at x, if it has one)."""
 
     def check(self, where: str) -> None:
         if self.direction not in PROBE_DIRECTIONS:
             raise ModelError(where, "direction", self.direction, " | ".join(map(repr, PROBE_DIRECTIONS)))
+
+
+def place_name(rotor, x: float) -> str:
+    """The name of the disc, bearing, coupling (or the pedestal-free support) at x, "" if none is named
+    there (a rotor file's names in the outputs: docs/outputs.md)."""
+    tol = 1e-9 * max(float(getattr(rotor, "length", 1.0)), 1e-300)
+    for items in (rotor.discs, rotor.bearings, rotor.couplings):
+        for it in items:
+            if getattr(it, "name", "") and abs(float(it.x) - float(x)) <= tol:
+                return it.name
+    return ""
+
+
+def probe_label(name: str, direction: str, x: float) -> str:
+    return f"{name}.{direction}" if name else f"{direction}@x={x:g}"
 
 
 @dataclass
@@ -59,9 +76,17 @@ class ProbeResponse:
     amplitude: np.ndarray           # (n_speeds,) m (peak)
     phase_lag_deg: np.ndarray       # lag behind the shaft's reference mark (phase 0 of Unbalance), [0, 360)
     value: np.ndarray               # complex amplitude (v or w; forward circle component for "major")
+    name: str = ""                  # the named thing at x (probe, disc, bearing, coupling), "" if none
+
+    @property
+    def label(self) -> str:
+        """The output's name in JSON, CSV and legends: ``<name>.<direction>`` (``<direction>@x=<x>``
+        where nothing at x has a name)."""
+        return probe_label(self.name, self.direction, self.x)
 
     def to_dict(self) -> dict:
-        return {"x": self.x, "direction": self.direction, "amplitude": self.amplitude.tolist(),
+        return {"x": self.x, "direction": self.direction, "name": self.name, "label": self.label,
+                "amplitude": self.amplitude.tolist(),
                 "phase_lag_deg": self.phase_lag_deg.tolist(), "real": self.value.real.tolist(),
                 "imag": self.value.imag.tolist()}
 
@@ -264,7 +289,8 @@ def unbalance_response(rotor, unbalances, speeds, *, probes=None, operating_rang
     for p in probes:
         amp, val = _probe_values(Q, rs, p)
         out.append(ProbeResponse(x=float(p.x), direction=p.direction, amplitude=amp,
-                                 phase_lag_deg=np.mod(-np.degrees(np.angle(val)), 360.0), value=val))
+                                 phase_lag_deg=np.mod(-np.degrees(np.angle(val)), 360.0), value=val,
+                                 name=p.name or place_name(rs.rotor, p.x)))
     res = UnbalanceResponse(speeds_rad_s=s, response=Q, node_x=rs.node_x, v_index=rs.node_dofs["v"],
                             w_index=rs.node_dofs["w"], probes=out, peaks=[], operating_range=operating_range,
                             n_dofs=int(solver.idx.size), method=method)

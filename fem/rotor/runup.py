@@ -150,6 +150,15 @@ class RunUpResult:
     warnings: list = field(default_factory=list)
     bearings: list = field(default_factory=list)
     integrator: str = "DOP853"
+    probe_names: list = field(default_factory=list)     # the named thing at each probe ("" if none)
+    eta: np.ndarray | None = field(default=None, repr=False)       # (n_t, n_basis) the reduced coordinates
+    eta_dot: np.ndarray | None = field(default=None, repr=False)   # (n_t, n_basis) their rates
+    basis: np.ndarray | None = field(default=None, repr=False)     # (n_dofs, n_basis): q = basis @ eta
+
+    def probe_label(self, k: int) -> str:
+        """The name of probe k in the outputs: the disc/bearing/coupling/rub there, else x=<x>."""
+        n = self.probe_names[k] if k < len(self.probe_names) else ""
+        return n or f"x={self.probe_x[k]:g}"
 
     def to_dict(self, samples: bool = False) -> dict:
         out = {"method": self.method, "t_end": float(self.t[-1]) if self.t.size else 0.0,
@@ -159,7 +168,8 @@ class RunUpResult:
                "rubs": [r.to_dict() for r in self.rubs], "events": self.events,
                "energy": {"start": self.energy_start, "end": self.energy_end, "works": self.works,
                           "relative_error": self.energy_error},
-               "peak_amplitude": {f"{x:g}": float(np.hypot(self.orbit_y[:, k], self.orbit_z[:, k]).max(initial=0.0))
+               "peak_amplitude": {(self.probe_names[k] if k < len(self.probe_names) and self.probe_names[k]
+                                   else f"{x:g}"): float(np.hypot(self.orbit_y[:, k], self.orbit_z[:, k]).max(initial=0.0))
                                   for k, x in enumerate(self.probe_x)},
                "reduction": self.reduction, "warnings": list(self.warnings)}
         if self.bearings:
@@ -168,7 +178,8 @@ class RunUpResult:
             out["integrator"] = self.integrator
         if samples:
             out["samples"] = {"t": self.t.tolist(), "speed_rad_s": self.speed.tolist(),
-                              "orbit_y": self.orbit_y.T.tolist(), "orbit_z": self.orbit_z.T.tolist()}
+                              "orbit_y": self.orbit_y.T.tolist(), "orbit_z": self.orbit_z.T.tolist(),
+                              "probes": [self.probe_label(k) for k in range(self.probe_x.size)]}
         return out
 
 
@@ -319,6 +330,10 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     iw = np.array([rs.dof(x, "w", "probe") for x in xs], dtype=int)
     orbit_y, orbit_z = traj.eta @ red.T[iv].T, traj.eta @ red.T[iw].T
     speed = ramp.speed(traj.t)
+    from .response import place_name
+
+    rub_at = {float(r.x): (r.name or "") for r in rubs}
+    names = [place_name(rs.rotor, x) or rub_at.get(float(x), "") for x in xs]
     hist = []
     for j, (r, c) in enumerate(zip(rubs, laws)):
         y, z = traj.eta @ c.g_y, traj.eta @ c.g_z
@@ -348,6 +363,7 @@ def run_up(rotor, run: RunUp, unbalances=(), rubs=(), probes=None, progress=None
     reduction = red.report()
     reduction["frequency_check"] = red.frequency_check(w_top, min(4, red.n_modes))
     return RunUpResult(t=traj.t, speed=speed, probe_x=np.array(xs), orbit_y=orbit_y, orbit_z=orbit_z, rubs=hist,
+                       probe_names=names, eta=traj.eta, eta_dot=traj.eta_dot, basis=red.T,
                        events=traj.events, works=dict(traj.works), energy_start=traj.energy_start,
                        energy_end=traj.energy_end, energy_error=float(err), reduction=reduction, method=run.method,
                        stopped=traj.stopped, steps=traj.steps, wall_time=time.perf_counter() - wall, warnings=warnings,

@@ -81,6 +81,12 @@ def static_deflection(rotor, *, gravity=(0.0, 0.0, -9.81), loads=(), speed: floa
     K = rs.stiffness(speed)
     free = np.ones(rs.n_dofs, dtype=bool)
     free[rs.constrained] = False
+    # axial and torsional motion decouple from the lateral (linear beam): unloaded, they stay at zero,
+    # so a 'full' model without axial or torsional restraint still has its sag under lateral loads
+    for fld in ("u", "theta_x"):
+        idx = np.flatnonzero(rs.dof_field == fld)
+        if idx.size and not np.any(f[idx]):
+            free[idx] = False
     fi = np.flatnonzero(free)
     Kff = sp.csc_matrix(K[fi][:, fi])
     try:

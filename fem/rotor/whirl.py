@@ -80,6 +80,30 @@ def classify_orbits(o: Orbits) -> tuple[str, float]:
     return "mixed", overall
 
 
+def classify_many(o: Orbits) -> tuple[list, np.ndarray]:
+    """:func:`classify_orbits` of every row of 2D orbits (modes x nodes) at once: (labels, overall
+    ratios); the same arithmetic row by row (each row's sums reduce its own contiguous row)."""
+    F, B = np.ascontiguousarray(o.forward), np.ascontiguousarray(o.backward)
+    size = F + B
+    top = size.max(axis=1, initial=0.0)
+    big = size > SIGNIFICANT * top[:, None]
+    ratio = Orbits(F, B, o.angle).ratio
+    f2, b2 = F**2, B**2
+    fs, bs = f2.sum(axis=1), b2.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        overall = (fs - bs) / (fs + bs)
+    labels = []
+    for j in range(F.shape[0]):
+        if not top[j] > 0:
+            labels.append("none")
+            overall[j] = 0.0
+            continue
+        r = ratio[j][big[j]]
+        labels.append("planar" if np.all(np.abs(r) < PLANAR) else "forward" if np.all(r > 0)
+                      else "backward" if np.all(r < 0) else "mixed")
+    return labels, overall
+
+
 def mac(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) between the columns of A and B."""
     num = np.abs(A.conj().T @ B) ** 2

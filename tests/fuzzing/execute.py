@@ -171,11 +171,12 @@ class Runner:
         if job.extra_outputs:
             for option, what in SECONDARY_OUTPUTS.get(cmd, ()):
                 outputs.setdefault(option, f"out/extra{option.replace('-', '_')}" + (".csv" if option == "--csv" else
-                                   ".png" if option == "--plot" else ".vtu" if option == "--vtu" else ""))
+                                   ".png" if option == "--plot" else ".vtu" if option == "--vtu" else
+                                   ".h5" if option == "--h5" else ""))
         if m.output:
             option, kind = m.output
             is_dir = dict(SECONDARY_OUTPUTS.get(cmd, ())).get(option) == "dir"
-            ext = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu"}.get(option, "")
+            ext = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu", "--h5": ".h5"}.get(option, "")
             if kind == "under_file":
                 actions.append(("file", "out/blocker"))
                 setup.append("touch out/blocker")

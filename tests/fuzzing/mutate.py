@@ -15,6 +15,9 @@ mutations, a change of the command line.  Categories:
 ``unknown_key``  a typo of a real key (replacing it, or beside it) at every level; an unknown key in every table
 ``delete``       each key and each array element at every level
 ``semantic``     every number of one table (or of all elements of an array of tables) set to 0
+``units``        a number -> a quantity string: of a wrong dimension, with a garbage unit, a huge exponent
+                 ("1e400 mm", "1e300 GPa"), "nan m", an offset unit ("20 degC"), or the same value in a
+                 valid non-SI unit (tests/unit_strings.py); and the whole file in valid non-SI units
 ``broken_toml``  truncation, unbalanced brackets, unterminated string, missing value, bad escape, lone CR
 ``encoding``     binary, non-UTF-8, UTF-16, BOM, NUL bytes, empty, whitespace- or comment-only files
 ``filesystem``   a directory, a missing file, a FIFO, a dangling symlink instead of the model file
@@ -45,9 +48,9 @@ OUTPUT_KINDS = {
 }
 #: Output options besides --json, per command: (option, what it names).
 SECONDARY_OUTPUTS = {
-    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir")),
+    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir"), ("--csv", "file")),
     "forced": (("--csv", "file"), ("--plot", "file")),
-    "simulate": (("--csv", "file"), ("--png", "dir")),
+    "simulate": (("--csv", "file"), ("--png", "dir"), ("--h5", "file")),
     "sweep": (("--out", "dir"),),
     "render": (("--out", "dir"),),
 }
@@ -250,6 +253,56 @@ def gen_values(b: _Builder, doc: dict):
                     or (isinstance(new, dict) and isinstance(v, dict)):
                 continue
             b.set("type", path, variant, f"{where} = {_short(new)} (a {variant} instead of {type(v).__name__})", new)
+
+
+UNIT_VARIANTS = (("unit_wrong_dimension", "{v!r} m^5"), ("unit_garbage", "{v!r} zorkmids"),
+                 ("unit_huge_exponent", "1e400 mm"), ("unit_overflow", "1e300 GPa"), ("unit_nan", "nan m"),
+                 ("unit_offset", "20 degC"), ("unit_comma", "5,5 mm"), ("unit_power_tower", "2**2**40 m"))
+"""Bad quantity strings put in place of every number (``{v!r}``: the number it replaces)."""
+
+
+def _unit_strings(doc: dict) -> dict | None:
+    """The document with every declared number as a valid non-SI quantity string (None if the package
+    does not load it: then there is nothing valid to convert)."""
+    from tests.unit_strings import rewrite
+
+    try:
+        return rewrite(doc)[0]
+    except Exception:                                  # noqa: BLE001 -- a base the package refuses
+        return None
+
+
+def gen_units(b: _Builder, doc: dict):
+    """units mutations: bad quantity strings for every number, its valid non-SI spelling, the whole
+    file in non-SI units."""
+    valid = _unit_strings(doc)
+    if valid is not None:
+        b.doc("units", (), "unit_all", "every number as a quantity string in a non-SI unit",
+              _Replace(valid), names=())
+    for path, v in list(walk(doc)):
+        if not is_number(v):
+            continue
+        if isinstance(path[-1], int) and path[-1] not in (0, len(get_at(doc, path[:-1])) - 1):
+            continue
+        where = label(path)
+        for variant, text in UNIT_VARIANTS:
+            new = text.format(v=v)
+            b.set("units", path, variant, f"{where} = {new!r} (was {_short(v)})", new)
+        try:
+            good = get_at(valid, path) if valid is not None else None
+        except (KeyError, IndexError, TypeError):
+            good = None
+        if isinstance(good, str):
+            b.set("units", path, "unit_valid", f"{where} = {good!r} (the same value, was {_short(v)})", good)
+
+
+@dataclass(frozen=True)
+class _Replace:
+    doc: dict
+
+    def __call__(self, d):
+        d.clear()
+        d.update(copy_doc(self.doc))
 
 
 def _append_copy_of_first(path):
@@ -493,6 +546,7 @@ def mutations_of(ex: Example) -> list[Mutation]:
     gen_structure(b, ex.cheap)
     gen_keys(b, ex.cheap)
     gen_semantic(b, ex.cheap)
+    gen_units(b, ex.cheap)
     gen_text(b, base_text)
     gen_encoding(b, base_text)
     gen_nesting(b, ex.cheap, base_text)

@@ -88,8 +88,10 @@ def controls(examples: list[Example], cheap_only: bool = False) -> list[Mutation
     return out
 
 
-def fast_sample(examples: list[Example], n: int = FAST_N, seed: int = 0) -> list[Mutation]:
-    """The default-tier sample: ``n`` files whose mutations a correct package rejects up front."""
+def fast_sample(examples: list[Example], n: int | None = None, seed: int = 0) -> list[Mutation]:
+    """The default-tier sample: ``n`` files whose mutations a correct package rejects up front
+    (default: ``FAST_N``, and at least one per example, so every shipped example is attacked)."""
+    n = max(FAST_N, len(examples)) if n is None else n
     pool = [m for m in all_mutations(examples) if m.category != "control" and FAST_VARIANTS.search(m.id)]
     return stratified_sample(pool, n, seed)
 
@@ -281,7 +283,7 @@ def main(argv: list[str] | None = None) -> int:
             allm = [m for m in all_mutations(examples) if m.category in a.category]
             muts = stratified_sample(allm, a.n, a.seed)
         elif a.fast:
-            muts = fast_sample(examples, FAST_N if a.n == 3000 else a.n, a.seed)
+            muts = fast_sample(examples, None if a.n == 3000 else a.n, a.seed)
         else:
             muts = slow_sample(examples, a.n, a.seed, budget=not a.no_budget)
         ctrl = [] if a.no_controls else controls(examples, cheap_only=a.fast)

@@ -115,7 +115,7 @@ def jeffcott_anisotropic():
                   bearings=[Bearing(0.0, kyy=ky, kzz=kz), Bearing(L, kyy=ky, kzz=kz), Bearing(L / 2, cyy=c, czz=c)])
     wn = {k: math.sqrt(v / m) for k, v in k_eff.items()}
     camp = campbell(rotor, np.linspace(0.0, 1.6 * max(wn.values()), 17), 2)
-    crit = sorted(cs.speed_rad_s for cs in camp.critical_speeds)
+    crit = sorted(cs.speed_rad_s for cs in camp.crossings)
     src = "closed form (Jeffcott rotor, series springs)"
     out = [check(name, src, "critical speed 1 (soft direction z) [rad/s]", wn["w"] * _damped(c, m, wn["w"]), crit[0], 1e-8),
            check(name, src, "critical speed 2 (stiff direction y) [rad/s]", wn["v"] * _damped(c, m, wn["v"]), crit[1], 1e-8),

@@ -65,7 +65,7 @@ def critical_two_methods():
         rotor = friswell_591(6, **kw)
         camp = campbell(rotor, np.linspace(0.0, rpm(5000), 17), 8, orders=(1.0, 2.0))
         for k in (1.0, 2.0):
-            roots = np.sort([c.speed_rad_s for c in camp.critical_speeds if c.order == k])
+            roots = np.sort([c.speed_rad_s for c in camp.crossings if c.order == k])
             lin = undamped_critical_speeds(rotor, 8, order=k).speeds_rad_s
             lin = lin[lin <= rpm(5000)]
             out.append(claim(name, "two methods", f"{tag}, order {k:g}: same number of critical speeds below 5000 rev/min",

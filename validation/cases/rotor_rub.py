@@ -201,7 +201,7 @@ def runup_example():
     out.append(check(name, "second integration (DOP853, no event location)", "orbit radius at the seal at the end [m]",
                      end2, float(np.hypot(res.orbit_y[-1, iy], res.orbit_z[-1, iy])), 1e-6))
     camp = study.campbell()
-    w_crit = min(cs.speed_rad_s for cs in camp.critical_speeds if cs.order == 1.0)
+    w_crit = min(cs.speed_rad_s for cs in camp.crossings if cs.order == 1.0)
     out.append(claim(name, "linear critical speed ([campbell])", f"first contact ({rub.first_contact['speed_rad_s']:.4g}"
                      f" rad/s) below the first critical ({w_crit:.4g} rad/s)", rub.first_contact["speed_rad_s"] < w_crit))
     spans = [(float(np.interp(a, res.t, res.speed)), float(np.interp(b, res.t, res.speed))) for a, b in rub.full_annular]

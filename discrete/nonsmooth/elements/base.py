@@ -26,7 +26,7 @@ states at once).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -37,12 +37,35 @@ from ...errors import ModelError
 WORK = ("conservative", "friction", "contacts", "elements")
 
 
+@dataclass(frozen=True)
+class Linearisation:
+    """What a linear analysis (modal, forced, Campbell) puts in place of a nonsmooth element: a
+    stiffness ``k`` and a viscous coefficient ``c`` along s, or (``hold``) the coordinate s held by a
+    constraint (stick, a closed rigid stop); ``Z``: a frequency-dependent complex stiffness
+    ``Z(omega)`` (forced response only; None: ``k + i omega c``).  ``note`` says it in words (printed
+    and recorded in the JSON of every linear analysis)."""
+
+    state: str
+    k: float = 0.0
+    c: float = 0.0
+    hold: bool = False
+    note: str = ""
+    Z: object = None
+
+    def dynamic_stiffness(self, omega):
+        """Complex stiffness along s at the angular frequency ``omega``: the force is ``-Z s``."""
+        return self.Z(omega) if self.Z is not None else self.k + 1j * np.asarray(omega) * self.c
+
+
 @dataclass
 class Element:
     """Base of the nonlinear elements (see the module docstring for the protocol)."""
 
     name: str
     g: np.ndarray
+    linearise: str | None = field(default=None, kw_only=True)
+    """The state a linear analysis puts the element in (one of ``linear_states``; None: the element's
+    default, :meth:`default_linear_state`)."""
 
     kind = "element"              # the model-file table of the element
     work = "elements"             # power category ("conservative": counted through its potential)
@@ -57,6 +80,8 @@ class Element:
         if not isinstance(self.name, str):
             raise ModelError(f"[[{self.kind}]]", "name", self.name, "a string")
         where = f"[[{self.kind}]] {self.name!r}"
+        if self.linearise is not None and self.linearise not in self.linear_states:
+            raise ModelError(where, "linearise", self.linearise, " | ".join(map(repr, self.linear_states)))
         for f in fields(self):
             if f.type is float or str(f.type) in ("float", "float | None", "typing.Optional[float]"):
                 v = getattr(self, f.name)
@@ -126,6 +151,37 @@ class Element:
         return 0.0
 
     soft_start_tags = ()          # guards that, starting on their boundary, fire only once clearly crossed
+
+    # ------------------------------------------------------------ outputs (discrete.loads)
+    outputs = ("deflection", "force")
+    """The element's default outputs (docs/outputs.md): its deflection s and its force F along s."""
+
+    def output_law(self, quantity: str) -> tuple[float, float, float]:
+        """A motion output as ``(a, b, c)``: ``quantity = a s + b s' + c`` (``deflection``: s,
+        ``velocity``: s')."""
+        if quantity in ("deflection", "twist", "displacement"):
+            return 1.0, 0.0, 0.0
+        if quantity in ("velocity", "slip_velocity"):
+            return 0.0, 1.0, 0.0
+        raise ModelError(f"[[{self.kind}]] {self.name!r}", "quantity", quantity,
+                         "deflection | velocity (or a force: force, torque, moment)")
+
+    # ------------------------------------------------------------ linear analyses
+    linear_states = ("linear",)
+    """The words of the element's ``linearise`` key (docs/outputs.md)."""
+
+    def default_linear_state(self) -> str:
+        """The state of :meth:`linearised` when ``linearise`` is not given."""
+        return self.linear_states[0]
+
+    @property
+    def linear_state(self) -> str:
+        return self.linearise if self.linearise is not None else self.default_linear_state()
+
+    def linearised(self, state: str | None = None) -> Linearisation:
+        """The element in a linear analysis: by default no stiffness, no damping (a smooth law's
+        linear part at s = 0 is its own affair: elements override this)."""
+        return Linearisation(state or self.linear_state, note="no stiffness, no damping")
 
     # ------------------------------------------------------------ optional: internal states
     n_states = 0

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, PiecewiseAffineLaw, StepLaw
+from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
 @dataclass
@@ -41,6 +41,15 @@ class Contact(Element):
             raise ModelError(where, "c", self.c, "a number >= 0")
         if not self.lower <= self.upper or (math.isinf(self.lower) and math.isinf(self.upper)):
             raise ModelError(where, "clearance", [self.lower, self.upper], "lower <= upper, at least one finite")
+
+    linear_states = ("closed", "open")
+
+    def linearised(self, state=None):
+        state = state or self.linear_state
+        if state == "closed":
+            return Linearisation(state, k=self.k, c=self.c, note=f"closed: its spring k = {self.k:g} and dashpot "
+                                 f"c = {self.c:g}")
+        return Linearisation(state, note="open: no force (free inside the clearance)")
 
     has_potential = True
 

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .base import Element, StepLaw
+from .base import Element, Linearisation, StepLaw
 
 
 @dataclass
@@ -36,6 +36,10 @@ class Cubic(Element):
 
     def moreau(self, h, theta):
         return CubicStep(self, h, theta)
+
+    def linearised(self, state=None):
+        return Linearisation(state or self.linear_state, note="linear part at s = 0: no stiffness (the force "
+                             "-k3 s^3 has zero slope there; the drive's linear spring is its [[spring]])")
 
 
 class CubicStep(StepLaw):

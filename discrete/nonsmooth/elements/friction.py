@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, StepLaw
+from .base import Element, Linearisation, StepLaw
 
 
 @dataclass
@@ -116,6 +116,25 @@ class Friction(Element):
 
     def velocity_scale(self) -> float:
         return abs(self.surface_velocity)
+
+    # ------------------------------------------------------------ outputs and linear analyses
+    outputs = ("force", "slip_velocity")
+
+    def output_law(self, quantity):
+        if quantity == "slip_velocity":                 # w = s' - surface_velocity
+            return 0.0, 1.0, -self.surface_velocity
+        return super().output_law(quantity)
+
+    linear_states = ("sliding", "stuck")
+
+    def linearised(self, state=None):
+        state = state or self.linear_state
+        if state == "stuck":
+            return Linearisation(state, hold=True, note="stuck: the coordinate held to the counter-surface "
+                                 "(its force is the constraint force)")
+        return Linearisation(state, c=self.viscous, note="sliding: the constant kinetic level (no stiffness)"
+                             + (f", the slope of the slip law as damping c = {self.viscous:g}" if self.viscous
+                                else ", no damping"))
 
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps):

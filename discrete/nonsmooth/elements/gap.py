@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, PiecewiseAffineLaw, StepLaw
+from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
 @dataclass
@@ -100,6 +100,15 @@ class Gap(Element):
 
     def stiffness(self) -> float:
         return self.k
+
+    # ------------------------------------------------------------ linear analyses
+    linear_states = ("closed", "open")
+
+    def linearised(self, state=None):
+        state = state or self.linear_state
+        if state == "closed":
+            return Linearisation(state, k=self.k, note=f"closed: a spring of its contact stiffness k = {self.k:g}")
+        return Linearisation(state, note="open: no force (free inside the clearance)")
 
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps):

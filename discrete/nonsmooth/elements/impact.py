@@ -5,7 +5,7 @@ import math
 from dataclasses import dataclass
 
 from ...errors import ModelError, SolverError
-from .base import Element, StepLaw
+from .base import Element, Linearisation, StepLaw
 
 
 def restitution_damping_ratio(e: float) -> float:
@@ -82,6 +82,15 @@ class Impact(Element):
         else:
             ctx.project_velocity(vplus)
         ctx.jump += ctx.energy() - E0
+
+    # ------------------------------------------------------------ linear analyses
+    linear_states = ("open", "closed")
+
+    def linearised(self, state=None):
+        state = state or self.linear_state
+        if state == "closed":
+            return Linearisation(state, hold=True, note="closed: the coordinate held at the stop (persistent contact)")
+        return Linearisation(state, note="open: free flight, no force")
 
     # ------------------------------------------------------------ smooth laws
     def regularised_force(self, s, sd, t, memory, settings):

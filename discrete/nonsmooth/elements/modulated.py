@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element
+from .base import Element, Linearisation
 
 
 @dataclass
@@ -64,6 +64,12 @@ class ModulatedSpring(Element):
 
     def explicit_power(self, s, mode, t):
         return -0.5 * self.k * self.depth * self.omega * np.cos(self.omega * np.asarray(t, dtype=float) + self.phase) * s * s
+
+    linear_states = ("mean",)
+
+    def linearised(self, state=None):
+        return Linearisation(state or self.linear_state, note="its mean stiffness, the k of its [[spring]] (the "
+                             "pulsation: drivefem simulate and [analysis] type = 'parametric')")
 
     def stiffness(self) -> float:
         return self.k * self.depth

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element
+from .base import Element, Linearisation
 
 
 @dataclass
@@ -74,6 +74,21 @@ class Motor(Element):
 
     def state_scale(self) -> float:
         return 1.0 / self.nu
+
+    # ------------------------------------------------------------ outputs and linear analyses
+    outputs = ("force", "velocity")          # the motor torque and the rotor's speed
+
+    linear_states = ("characteristic",)
+
+    def linearised(self, state=None):
+        """The dynamic characteristic about a steady speed: torque -Z(omega) s with the complex stiffness
+        Z = i omega b / (1 + i omega T), b = 1/(nu omega0) (the Maxwell element of (10.65)); it adds
+        damping, not stiffness or inertia, so the undamped modes do not see it."""
+        b = 1.0 / (self.nu * self.omega0)
+        T = self.T
+        return Linearisation(state or self.linear_state, note=f"its dynamic characteristic: complex stiffness "
+                             f"i omega b/(1 + i omega T), b = {b:g}, T = {T:g} (forced response; the undamped "
+                             "modes do not see it)", Z=lambda w: 1j * np.asarray(w) * b / (1 + 1j * np.asarray(w) * T))
 
     def velocity_scale(self) -> float:
         return self.omega0

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, PiecewiseAffineLaw
+from .base import Element, Linearisation, PiecewiseAffineLaw
 from .gap import ClearanceSpringStep
 
 
@@ -54,6 +54,20 @@ class OneSided(Element):
 
     def stiffness(self) -> float:
         return self.k
+
+    # ------------------------------------------------------------ linear analyses
+    linear_states = ("closed", "open")
+
+    def default_linear_state(self) -> str:
+        """Its state at s = 0: engaged ("closed", a preloaded strand taut) when side (0 - s_open) > 0."""
+        return "closed" if self.side * (0.0 - self.s_open) > 0 else "open"
+
+    def linearised(self, state=None):
+        state = state or self.linear_state
+        what = "taut" if self.side == 1 else "in contact"
+        if state == "closed":
+            return Linearisation(state, k=self.k, note=f"closed ({what}): a spring of its stiffness k = {self.k:g}")
+        return Linearisation(state, note="open (slack)" if self.side == 1 else "open: no force")
 
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps):

@@ -134,6 +134,8 @@ def hybrid_model(doc) -> HybridModel:
     for table, i, t, name in element_tables(doc):
         where = f"[[{table}]] #{i}"
         cls, kw, flip = t.element(where, "hybrid", weight)
+        if t.linearise is not None:
+            kw.setdefault("linearise", t.linearise)
         terms = _terms(t, where)
         names.add(name)
         model.elements.append(ElementSpec(cls, dict(name=name, **kw), [(r, -x) for r, x in terms] if flip else terms))

@@ -15,6 +15,7 @@ from discrete.nonsmooth import ExternalForce, MotionLaw
 from discrete.nonsmooth.elements import ModulatedSpring
 from discrete.nonsmooth.problem import ProblemSpec, ProgrammeMotion
 
+from ...loads.names import force_name
 from .damping import time_domain_damping
 from .elements import element_tables
 
@@ -114,9 +115,12 @@ def _refuse_outside_event_solver(doc) -> None:
                          "integrate modulated springs, programme laws or motors)")
 
 
-def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
-    """The nonsmooth problem of a lumped model file (elements, drivers, forces, variable mass)."""
-    _refuse_outside_event_solver(doc)
+def problem_spec(doc, t_end: float | None = None, refuse: bool = True) -> ProblemSpec:
+    """The nonsmooth problem of a lumped model file (elements, drivers, forces, variable mass);
+    ``refuse``: the tables only the event solver integrates are an error with [steady] or Moreau-Jean
+    (False: the linear analyses' view, which only reads the elements)."""
+    if refuse:
+        _refuse_outside_event_solver(doc)
     lm = lumped_model(doc)
     if not lm.bodies:
         raise ModelError("model file", "body", None, "at least one [[body]] table")
@@ -141,6 +145,10 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
 
     def coordinate(t, where: str) -> np.ndarray:
         """Gradient g (independent coordinates) of s = ratio x_body or s = r_b x_b - r_a x_a."""
+        return named(t, where) @ T
+
+    def named(t, where: str) -> np.ndarray:
+        """Gradient g over every body and driver (gear-driven bodies included)."""
         allowed = names_all + [GROUND]
         g_all = np.zeros(len(names_all))
         if t.x is not None:
@@ -161,7 +169,7 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
                 g_all[names_all.index(a)] -= ra
             if b != GROUND:
                 g_all[names_all.index(b)] += rb
-        return g_all @ T
+        return g_all
 
     def weight(t, where):
         b = bodies.get(t.body)
@@ -169,12 +177,16 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
             raise ModelError(where, "body", t.body, "a body (not a driver) for normal = \"weight\"")
         return grav * b.inertia, b.inertia, b.inertia_rate or 0.0
 
-    elements = []
+    elements, layout = [], {"elements": [], "forces": [], "force_names": []}
     for table, i, t, name in element_tables(doc):
         where = f"[[{table}]] #{i}"
-        g = coordinate(t, where)
+        g = named(t, where)
         cls, kw, flip = t.element(where, "lumped", weight)
-        elements.append(cls(name=name, g=np.negative(g) if flip else g, **kw))
+        if t.linearise is not None:
+            kw.setdefault("linearise", t.linearise)
+        g = np.negative(g) if flip else g
+        elements.append(cls(name=name, g=g @ T, **kw))
+        layout["elements"].append((table, g))
     used = {el.name for el in elements}
     for i, t in enumerate(doc.spring, 1):
         if t.modulation is None:
@@ -183,14 +195,18 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
         name = f"spring{i}.modulation"
         if name in used:
             raise ModelError(where, "modulation", name, "an element name not used by another element")
-        g = coordinate(_SpringCoordinate(t.between, t.ratios), where)
+        g = named(_SpringCoordinate(t.between, t.ratios), where)
         m = t.modulation
-        elements.append(ModulatedSpring(name=name, g=g, k=t.k, depth=m.depth, omega=m.omega, phase=m.phase))
+        elements.append(ModulatedSpring(name=name, g=g @ T, k=t.k, depth=m.depth, omega=m.omega, phase=m.phase))
+        layout["elements"].append(("spring", g))
 
     forces = []
     for i, t in enumerate(doc.force, 1):
         w = f"[[force]] #{i}"
-        g = coordinate(t, w)
+        g_named = named(t, w)
+        g = g_named @ T
+        layout["forces"].append(g_named)
+        layout["force_names"].append(force_name(i, t))
         value = t.value
         if t.gravity:
             b = bodies.get(t.body)
@@ -223,7 +239,7 @@ def problem_spec(doc, t_end: float | None = None) -> ProblemSpec:
         if n in bodies:
             x0[j], v0[j] = bodies[n].x0, bodies[n].v0
     return ProblemSpec(system=ls, elements=elements, drivers=drivers, forces=forces, mass_rate=Mdot,
-                       reactive=Creact, x0=x0, v0=v0, damping_report=psi_report)
+                       reactive=Creact, x0=x0, v0=v0, damping_report=psi_report, layout=layout)
 
 
 class _SpringCoordinate:

@@ -178,6 +178,20 @@ def _unbalances(doc) -> list:
     return [Unbalance(x=u.x, magnitude=u.magnitude, phase=math.radians(u.phase_deg)) for u in doc.unbalance]
 
 
+def operating_range(doc) -> tuple | None:
+    """The operating speed range (rad/s): [campbell]'s, else [unbalance_response]'s, else None."""
+    for name in ("campbell", "unbalance_response"):
+        t = getattr(doc, name, None)
+        if t is None or (t.operating_range is None and t.operating_range_rpm is None):
+            continue
+        op = t.operating_range if t.operating_range_rpm is None else [v * RPM for v in t.operating_range_rpm]
+        if not op[0] <= op[1]:
+            raise ModelError(f"[{name}]", "operating_range" if t.operating_range_rpm is None else "operating_range_rpm",
+                             list(t.operating_range or t.operating_range_rpm), "[min, max] with min <= max")
+        return float(op[0]), float(op[1])
+    return None
+
+
 @dataclass
 class ResponseSpec:
     """What ``drivefem forced`` needs: unbalances, speeds (rad/s), probes, operating range."""
@@ -205,7 +219,7 @@ def response_spec(doc) -> ResponseSpec:
     op = t.operating_range if t.operating_range_rpm is None else [v * RPM for v in t.operating_range_rpm]
     if op is not None and not op[0] <= op[1]:
         raise ModelError("[unbalance_response]", "operating_range", list(op), "[min, max] with min <= max")
-    probes = [Probe(p.x, p.direction) for p in t.probe] or None
+    probes = [Probe(p.x, p.direction, p.name or "") for p in t.probe] or None
     unb = _unbalances(doc)
     return ResponseSpec(unbalances=unb, speeds=speeds, probes=probes,
                         operating_range=None if op is None else (float(op[0]), float(op[1])), find_peaks=t.peaks)
@@ -252,3 +266,58 @@ def run_up_spec(doc) -> RunUpSpec:
         raise ModelError("model file (rotor)", "unbalance", [], "at least one [[unbalance]] or [[rub]] for drivefem "
                          "simulate (without either the rotor stays at rest)")
     return RunUpSpec(run=run, unbalances=unb, rubs=rubs)
+
+
+def _speed_key(table, default: float | None = None) -> float | None:
+    """A table's ``speed`` (rad/s) or ``speed_rpm`` (rev/min -> rad/s), else ``default``."""
+    if table is None:
+        return default
+    if getattr(table, "speed_rpm", None) is not None:
+        return table.speed_rpm * RPM
+    if getattr(table, "speed", None) is not None:
+        return float(table.speed)
+    return default
+
+
+def static_spec(doc) -> dict:
+    """``[static]`` (optional) -> keyword arguments of :func:`fem.rotor.static_deflection`."""
+    from ...rotor.static import PointLoad
+
+    t = doc.static
+    speed = _speed_key(t, _speed_key(doc.analysis, 0.0))
+    loads = [PointLoad(x=p.x, fy=p.fy, fz=p.fz, fx=p.fx) for p in (t.load if t is not None else [])]
+    gravity = tuple(t.gravity) if t is not None else (0.0, 0.0, -9.81)
+    return {"gravity": gravity, "loads": loads, "speed": speed}
+
+
+def stability_speeds(doc) -> np.ndarray:
+    """The speeds scanned by ``drivefem stability`` (rad/s > 0): [stability]'s, else [campbell]'s."""
+    t = doc.stability
+    if t is not None and (t.speeds is not None or t.speeds_rpm is not None):
+        s, where = speed_grid(t, "[stability]"), "[stability]"
+    elif doc.campbell is not None:
+        s, where = speed_grid(doc.campbell, "[campbell]"), "[campbell]"
+    else:
+        raise ModelError("model file (rotor)", "stability", None, "a table [stability] with speeds = [..] or "
+                         "speeds_rpm = { start, stop, points } (or a [campbell] table) for drivefem stability")
+    s = s[s > 0]
+    if s.size < 2:
+        raise ModelError(where, "speeds", s.tolist(), "at least two speeds > 0 to scan for the stability threshold")
+    return s
+
+
+def level1_spec(doc, op_range) -> dict | None:
+    """``[stability.api_level1]`` -> keyword arguments of :func:`fem.rotor.api_level1.api_level1`, or None."""
+    from ...rotor.api_level1 import Stage
+
+    t = doc.stability.api_level1 if doc.stability is not None else None
+    if t is None:
+        return None
+    speed = _speed_key(t, None if op_range is None else op_range[1])
+    if speed is None:
+        raise ModelError("[stability.api_level1]", "speed_rpm", None, "the maximum continuous speed: speed_rpm = .. "
+                         "(or speed, rad/s), or an operating range in [campbell] / [unbalance_response]")
+    stages = [Stage(x=s.x, power=s.power, diameter=s.diameter, width=s.width, density_ratio=s.density_ratio,
+                    name=s.name) for s in t.stage]
+    return {"stages": stages, "speed": speed, "machine": t.machine, "placement": t.placement,
+            "exclude": tuple(t.exclude), "points": t.points}

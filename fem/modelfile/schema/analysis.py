@@ -3,19 +3,19 @@
 the global damping added to the model's own dampers and dissipation coefficients (design.md §3)."""
 from __future__ import annotations
 
-from typing import Annotated, Literal, Union
+from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Discriminator, Field, Tag, model_validator
 
-from .base import Count, NonNegative, Positive, Table, rule
+from .base import Count, Integer, NonNegative, Number, Positive, Real, Table, rule
 
 
 class SweepHz(Table):
     """A frequency grid in Hz."""
 
-    start: NonNegative
+    start: NonNegative["Hz"]
     """First frequency, Hz."""
-    stop: Positive
+    stop: Positive["Hz"]
     """Last frequency, Hz (> start)."""
     points: Count = 200
     """Number of frequencies."""
@@ -37,9 +37,9 @@ class ModalAnalysis(Table):
     type: Literal["modal"] = "modal"
     modes: Count | None = None
     """Number of modes (default 6, capped at the number of free DOFs)."""
-    shift: float | None = None
+    shift: Real["rad^2/s^2"] | None = None
     """Shift of the shift-invert eigensolver, rad^2/s^2 (default: automatic)."""
-    tolerance: Annotated[float, Field(gt=0, lt=1)] = 1e-5
+    tolerance: Number(gt=0, lt=1)["1"] = 1e-5
     """Relative residual above which a mode is reported as not reliable."""
     convergence_n: Annotated[list[Count], Field(min_length=1)] | None = None
     """Drive files: mechanism counts n of the convergence study towards the pseudo-medium."""
@@ -50,9 +50,9 @@ class ForcedAnalysis(Table):
     the amplitude-frequency curve of the ``[steady]`` table (nonlinear models)."""
 
     type: Literal["forced"]
-    frequencies_hz: Annotated[list[NonNegative], Field(min_length=1)] | None = None
+    frequencies_hz: Annotated[list[NonNegative["Hz"]], Field(min_length=1)] | None = None
     """Forcing frequencies, Hz."""
-    omega_rad_s: Annotated[list[NonNegative], Field(min_length=1)] | None = None
+    omega_rad_s: Annotated[list[NonNegative["rad/s"]], Field(min_length=1)] | None = None
     """Forcing angular frequencies, rad/s."""
     sweep_hz: SweepHz | None = None
     """A grid: { start, stop, points, spacing = "linear" | "log" }, Hz."""
@@ -62,10 +62,10 @@ class ForcedAnalysis(Table):
     """Modes of the modal superposition (default min(20, free DOFs))."""
     convergence_n: Annotated[list[Count], Field(min_length=1)] | None = None
     """Drive files: mechanism counts n of the convergence study."""
-    period: Positive | None = None
+    period: Positive["s"] | None = None
     """Periodic non-harmonic loads ([[load]] waveform): the period T, s -- the response is the Fourier
     superposition of the harmonics j 2 pi/T, j = 0..harmonics (textbook §5.8), instead of a frequency list."""
-    harmonics: Annotated[int, Field(ge=1, le=2000)] = 64
+    harmonics: Integer(ge=1, le=2000) = 64
     """With period: the number of harmonics of the superposition."""
 
     @property
@@ -74,13 +74,13 @@ class ForcedAnalysis(Table):
 
 
 class OmegaGrid(Table):
-    """An excitation-frequency grid of the parametric chart: ``{ start, stop, points }``."""
+    """An excitation-frequency grid of the parametric chart: ``{ start, stop, points }``, rad/s."""
 
-    start: Positive
-    """First excitation frequency Omega (rad/s, or Omega / omega_1 for omega_ratio)."""
-    stop: Positive
-    """Last excitation frequency (> start)."""
-    points: Annotated[int, Field(ge=2)] = 161
+    start: Positive["rad/s"]
+    """First excitation frequency Omega, rad/s."""
+    stop: Positive["rad/s"]
+    """Last excitation frequency (> start), rad/s."""
+    points: Integer(ge=2) = 161
     """Number of equally spaced frequencies."""
 
     @model_validator(mode="after")
@@ -90,12 +90,21 @@ class OmegaGrid(Table):
         return self
 
 
+class OmegaRatioGrid(OmegaGrid):
+    """An excitation-frequency grid of the parametric chart as ratios Omega / omega_1: ``{ start, stop, points }``."""
+
+    start: Positive["1"]
+    """First ratio Omega / omega_1."""
+    stop: Positive["1"]
+    """Last ratio Omega / omega_1 (> start)."""
+
+
 class DepthGrid(Table):
     """The depth grid of the parametric chart (its vertical axis eps): ``{ max, min, points }``."""
 
-    max: Positive
+    max: Positive["1"]
     """Largest depth of pulsation eps (below the depth at which K(t) or M(t) stops being positive definite)."""
-    min: NonNegative = 0.0
+    min: NonNegative["1"] = 0.0
     """Smallest depth eps (< max)."""
     points: Count = 41
     """Number of equally spaced depths."""
@@ -122,11 +131,11 @@ class Modulation(Table):
     """FE models: the [[segment]] (1-based) whose stiffness (or distributed inertia) pulsates."""
     point: Count | None = None
     """FE models: the [[point]] (1-based) whose spring k, kr (or mass and inertia) pulsates."""
-    depth: float = 1.0
+    depth: Real["1"] = 1.0
     """Relative depth of this term (the chart's eps multiplies it; negative flips the sign)."""
     harmonic: Count = 1
     """Harmonic h of the term: sin(h Omega t + phase)."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase of the term, rad."""
     label: str = ""
     """Free text naming the term in outputs."""
@@ -160,13 +169,13 @@ class ParametricAnalysis(Table):
     """[[analysis.modulation]]: the pulsating terms (at least one)."""
     omega_rad_s: OmegaGrid | None = None
     """Excitation frequencies Omega: { start, stop, points }, rad/s."""
-    omega_ratio: OmegaGrid | None = None
+    omega_ratio: OmegaRatioGrid | None = None
     """Excitation frequencies as Omega / omega_1 (first natural frequency of the mean system): { start, stop, points }."""
     depth: DepthGrid
     """Depths of pulsation eps: { max, min = 0, points = 41 }."""
-    boundaries_at: list[NonNegative] = []
+    boundaries_at: list[NonNegative["1"]] = []
     """Depths at which the tongue edges are located by root finding."""
-    boundary_samples: Annotated[int, Field(ge=2)] = 401
+    boundary_samples: Integer(ge=2) = 401
     """Omega samples of each edge search (thin tongues between samples are searched too)."""
     thresholds: bool = True
     """Damping thresholds eps* of the principal tongues Omega = 2 omega_r inside the Omega range."""
@@ -175,9 +184,9 @@ class ParametricAnalysis(Table):
     (M q')' + C q' + K q = 0, 'newton' M q'' + C q' + K q = 0."""
     modes: Count | None = None
     """Project on the lowest modes of the mean system (required above 60 free DOFs)."""
-    tolerance: Annotated[float, Field(gt=0, le=1e-4)] = 1e-10
+    tolerance: Number(gt=0, le=1e-4)["1"] = 1e-10
     """Relative error target of each monodromy matrix (step doubling of the sixth-order Magnus integrator)."""
-    stability_margin: Annotated[float, Field(gt=0, le=1e-2)] = 1e-6
+    stability_margin: Number(gt=0, le=1e-2)["1"] = 1e-6
     """A point is stable if max |multiplier| < 1 + stability_margin."""
 
     @model_validator(mode="after")
@@ -214,19 +223,19 @@ class Damping(Table):
 
     type: Literal["none", "viscous", "rayleigh", "modal", "hysteretic"] | None = None
     """Damping model (default: from the keys given, else "viscous")."""
-    alpha: NonNegative = 0.0
+    alpha: NonNegative["1/s"] = 0.0
     """Rayleigh mass-proportional coefficient, 1/s."""
-    beta: NonNegative = 0.0
+    beta: NonNegative["s"] = 0.0
     """Rayleigh stiffness-proportional coefficient, s."""
-    zeta: NonNegative = 0.0
+    zeta: NonNegative["1"] = 0.0
     """Modal damping ratio."""
-    psi: NonNegative = 0.0
+    psi: NonNegative["1"] = 0.0
     """Dissipation coefficient of the textbook (delta = psi / (4 pi))."""
     psi_time: Literal["equivalent", "modal"] | None = None
     """Time domain: how psi (of [damping], segments and springs) becomes a viscous matrix: "equivalent"
     (9.3) C = H / omega_ref, or "modal" (9.14)-(9.18) (default: equivalent at the single forcing frequency,
     else modal)."""
-    omega_ref: Positive | Literal["forcing", "first_mode"] | None = None
+    omega_ref: Positive["rad/s"] | Literal["forcing", "first_mode"] | None = None
     """Time domain, psi_time = "equivalent": the reference frequency, rad/s, "forcing" or "first_mode"."""
     psi_modes: Count | None = None
     """Time domain, psi_time = "modal": modes of the modal dissipation (default: all up to 200 DOFs, else 20)."""
@@ -264,7 +273,7 @@ class Damping(Table):
 class Excitation(Table):
     """Location keys shared by ``[[load]]``, ``[[base_motion]]`` and ``[[response]]``."""
 
-    x: float | None = None
+    x: Real["m"] | None = None
     """FE models: node position, m."""
     dof: str | None = None
     """FE models: DOF name at the node (default: the primary field)."""
@@ -287,11 +296,11 @@ class Waveform(Table):
 
     kind: Literal["square", "sawtooth", "triangle", "table"]
     """The unit shape."""
-    duty: Annotated[float, Field(gt=0, lt=1)] | None = None
+    duty: Number(gt=0, lt=1)["1"] | None = None
     """square: the fraction of the period at +1 (default 0.5)."""
-    t: Annotated[list[float], Field(min_length=2)] | None = None
+    t: Annotated[list[Real["1"]], Field(min_length=2)] | None = None
     """table: instants as fractions of the period, increasing from 0 to 1."""
-    value: Annotated[list[float], Field(min_length=2)] | None = None
+    value: Annotated[list[Real["1"]], Field(min_length=2)] | None = None
     """table: the shape's values at t (value[0] == value[-1])."""
 
     @model_validator(mode="after")
@@ -317,9 +326,11 @@ class Load(Excitation):
     """``[[load]]``: harmonic force amplitude * exp(i phase) at a DOF (forced analysis), or with a
     ``waveform`` a periodic non-harmonic load of the period ``[analysis] period``."""
 
-    amplitude: float
-    """Force or moment amplitude."""
-    phase_deg: float = 0.0
+    unit_choice: ClassVar[dict] = {"amplitude": ("scaling", {"constant": (0, 1), "omega2": (2, 3)})}
+
+    amplitude: Real["N", "N*m", "kg*m", "kg*m^2*rad"]
+    """Force or moment amplitude (N or N m; with scaling = "omega2": m e, kg m, or its rotational analogue)."""
+    phase_deg: Real["deg"] = 0.0
     """Phase, degrees (with a waveform: the shift of its period, 360 = one period)."""
     waveform: Waveform | None = None
     """A periodic non-harmonic shape { kind = "square" | "sawtooth" | "triangle" | "table", .. }."""
@@ -337,15 +348,15 @@ class Load(Excitation):
 class BaseMotion(Table):
     """``[[base_motion]]``: harmonic motion of a held DOF (a clamped/pinned support or a driver)."""
 
-    x: float | None = None
+    x: Real["m"] | None = None
     """FE models: position of the moving support, m."""
     dof: str | None = None
     """FE models: DOF of the support."""
     driver: Annotated[str, Field(min_length=1)] | None = None
     """Lumped models: driver name."""
-    amplitude: float
+    amplitude: Real["m", "rad"]
     """Displacement amplitude."""
-    phase_deg: float = 0.0
+    phase_deg: Real["deg"] = 0.0
     """Phase, degrees."""
 
     @model_validator(mode="after")

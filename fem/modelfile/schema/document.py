@@ -25,8 +25,9 @@ from .drive import Drive
 from .elements import ELEMENT_TABLES, DistributedFriction, Force
 from .fe import Material, ModelSettings, Point, Segment, Support
 from .lumped import Body, Damper, Driver, Gear, Spring
-from .rotor import (CampbellTable, RotorAnalysis, RotorTable, RubTable, RunUpTable, UnbalanceResponseTable,
-                    UnbalanceTable)
+from .output import Output
+from .rotor import (CampbellTable, CriticalMapTable, RotorAnalysis, RotorTable, RubTable, RunUpTable, StabilityTable,
+                    StaticTable, UnbalanceResponseTable, UnbalanceTable)
 from .simulation import Constants, Initial, Reduction, Simulation
 from .steady import Steady, Sweep
 from .superelement import SuperElement
@@ -81,6 +82,8 @@ class LumpedTables(Table):
     """[[spring]]: linear springs (with optional parallel dashpots)."""
     damper: _array(Damper)
     """[[damper]]: viscous dampers."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: every element's deflection and force, every reaction)."""
 
 
 class TimeTables(Table):
@@ -138,6 +141,9 @@ def _frequencies_rule(doc) -> None:
 
 class FEFile(ModelFileBase, FETables, LinearTables, ExcitationTables):
     """An FE model file: a shaft, rod or beam with modal or harmonic analysis."""
+
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations and every support's reaction)."""
 
     @model_validator(mode="after")
     def _rules(self):
@@ -207,6 +213,14 @@ class RotorFile(ModelFileBase):
     """[run_up]: speed ramp, method and reduction of the transient run (drivefem simulate)."""
     rub: _array(RubTable)
     """[[rub]]: radial clearances with contact and friction: rotor-stator rub, bearing clearance (drivefem simulate)."""
+    static: StaticTable | None = None
+    """[static]: gravity, speed and point loads of the static deflection (drivefem static)."""
+    critical_map: CriticalMapTable | None = None
+    """[critical_map]: stiffness range of the undamped critical speed map (drivefem critical-map)."""
+    stability: StabilityTable | None = None
+    """[stability]: speeds of the stability threshold and the API Level I screening (drivefem stability)."""
+    output: _array(Output)
+    """[[output]]: named outputs (default: the section loads at the key stations, every bearing's reaction)."""
 
 
 KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
@@ -251,7 +265,7 @@ HINTS = {
                   for k in ("load", "base_motion", "response")}},
     "drive": {k: v for k, v in OTHER_KIND.items() if k != "drive"},
     "rotor": {**{k: "not a table of rotor files (a [rotor] file has [rotor], [analysis], [campbell], "
-                 "[unbalance_response], [[unbalance]], [run_up], [[rub]] and title)" for k in OTHER_KIND},
+                 "[unbalance_response], [[unbalance]], [run_up], [[rub]], [static], [critical_map], [stability], [[output]] and title)" for k in OTHER_KIND},
               "simulation": "in a rotor file the transient run is [run_up] (with [[rub]] clearances)",
               "material": "in a rotor file the shaft material is [rotor.material]",
               "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",

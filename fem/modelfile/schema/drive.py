@@ -6,16 +6,16 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Discriminator, Field, Tag, model_validator
 
-from .base import Count, NonNegative, Positive, Table, rule
+from .base import Count, NonNegative, Number, Positive, Real, Table, rule
 
 
 class LumpedDriveShaft(Table):
     """``[drive.shaft] type = "lumped"``: discs J0 joined by shaft segments c0."""
 
     type: Literal["lumped"] = "lumped"
-    c0: Positive
+    c0: Positive["N*m/rad"]
     """Stiffness of one shaft segment, N m/rad."""
-    J0: Positive
+    J0: Positive["kg*m^2"]
     """Disc inertia at each mechanism, kg m^2."""
 
 
@@ -23,13 +23,13 @@ class DistributedDriveShaft(Table):
     """``[drive.shaft] type = "distributed"``: a continuous shaft with optional discs."""
 
     type: Literal["distributed"]
-    length: Positive
+    length: Positive["m"]
     """Shaft length, m."""
-    GI: Positive
+    GI: Positive["N*m^2"]
     """Torsional stiffness G I_p, N m^2."""
-    rho: NonNegative
+    rho: NonNegative["kg*m^2/m"]
     """Polar inertia per length, kg m."""
-    J0: NonNegative = 0.0
+    J0: NonNegative["kg*m^2"] = 0.0
     """Optional disc at each mechanism, kg m^2."""
     elements: Count = 8
     """FE elements per segment (discrete representation)."""
@@ -57,13 +57,13 @@ DriveShaft = Annotated[Union[Annotated[LumpedDriveShaft, Tag("lumped")],
 class Mechanism(Table):
     """``[drive.mechanism]``: the identical 1-DOF cyclic mechanism (Fig. 10.2)."""
 
-    m: Positive
+    m: Positive["kg"]
     """Output mass, kg."""
-    c: Annotated[float, Field(gt=0, allow_inf_nan=True)] | None = None
+    c: Number(gt=0, allow_inf_nan=True)["N/m"] | None = None
     """Stiffness, N/m (c = inf: a rigid mechanism)."""
-    k: Positive | None = None
+    k: Positive["rad/s"] | None = None
     """Partial frequency sqrt(c/m), rad/s (instead of c)."""
-    ratio: float
+    ratio: Real["m/rad"]
     """First transfer function Pi' (m/rad), non-zero."""
     output: Literal["free", "grounded"] = "free"
     """Mechanism output free, or held by a spring to ground."""
@@ -82,7 +82,7 @@ class Mechanism(Table):
 class DriveLoad(Table):
     """``[drive.load]``: a harmonic force on every mechanism output."""
 
-    force: float = 0.0
+    force: Real["N"] = 0.0
     """Force amplitude on each mechanism output, N."""
 
 
@@ -93,7 +93,7 @@ class DriveContinuum(Table):
     """Elements of the continuum model."""
     order: Literal[1, 2] = 2
     """Lagrange order of the continuum model."""
-    length: Positive | None = None
+    length: Positive["m"] | None = None
     """Lumped shafts only: length of the continuum (the whole drive), m; default 1 m per segment."""
 
 

@@ -12,8 +12,8 @@ from discrete.errors import ModelError
 from discrete.nonsmooth import elements as E
 
 from ..deprecation import warn_deprecated
-from .base import Fraction, NonNegative, Positive, Table, rule
-from .lumped import Ends, Ratios
+from .base import Fraction, NonNegative, Positive, Real, Table, rule
+from .lumped import RATIO, Ends, Ratios
 
 ELEMENT_TABLES: dict[str, type] = {}
 """{table name: schema class} of the element tables, in the order the solvers list the elements."""
@@ -34,11 +34,13 @@ class Coordinate(Table):
     or ``between`` two ends (s = r_b x_b - r_a x_a with ``ratios``); ``ratio`` scales a single
     coordinate (s = ratio x)."""
 
+    one_coordinate: ClassVar[bool] = True
+
     name: Annotated[str, Field(min_length=1)] | None = None
     """Element name (unique among elements; default <table><index>)."""
     body: Annotated[str, Field(min_length=1)] | None = None
     """A body or driver name: s = its coordinate."""
-    x: float | None = None
+    x: Real["m"] | None = None
     """Hybrid models: position of the FE node, m."""
     dof: str | None = None
     """Hybrid models: DOF name at the node (default: the primary field)."""
@@ -46,7 +48,7 @@ class Coordinate(Table):
     """Two ends: names, "ground" or (hybrid) { x = .., dof = .. }."""
     ratios: Ratios | None = None
     """[r_a, r_b] with between (default [1, 1])."""
-    ratio: float | None = None
+    ratio: Real[RATIO] | None = None
     """Scale of a single coordinate (body or x), s = ratio * x (default 1)."""
 
     @model_validator(mode="after")
@@ -82,27 +84,30 @@ class Friction(Coordinate):
     Levels as forces (``kinetic``, ``static``) or as a friction coefficient on a normal force
     (``mu``, ``mu_static`` with ``normal``)."""
 
-    kinetic: NonNegative | None = None
+    kinetic: NonNegative["N", "N*m"] | None = None
     """Kinetic friction level (force or torque)."""
-    static: NonNegative | None = None
+    static: NonNegative["N", "N*m"] | None = None
     """Breakaway (static) limit, >= kinetic (default: the kinetic level)."""
-    mu: NonNegative | None = None
+    mu: NonNegative["1"] | None = None
     """Friction coefficient (with normal)."""
-    mu_static: NonNegative | None = None
+    mu_static: NonNegative["1"] | None = None
     """Static friction coefficient, >= mu (default mu)."""
-    normal: Literal["weight", "given"] | Positive | None = None
+    normal: Literal["weight", "given"] | Positive["N", "N*m"] | None = None
     """Normal force for mu: "weight" (g times the current inertia of the body, seed 004 §2) or a force."""
-    viscous: float = 0.0
+    viscous: Real["N*s/m", "N*m*s/rad"] = 0.0
     """Velocity-proportional term a1 of the slip law."""
-    quadratic: float = 0.0
+    quadratic: Real["N*s^2/m^2", "N*m*s^2/rad^2"] = 0.0
     """Quadratic term a2 of the slip law (seed 002 combined law)."""
-    cubic: float = 0.0
+    cubic: Real["N*s^3/m^3", "N*m*s^3/rad^3"] = 0.0
     """Cubic term a3 of the slip law (falling characteristic (8.48))."""
-    surface_velocity: float = 0.0
+    surface_velocity: Real["m/s", "rad/s"] = 0.0
     """Velocity of the counter-surface (clutch, belt)."""
     restick: Literal["static", "kinetic"] = "static"
     """At a stop during slip: stick within the static limit ("static") or within the kinetic level,
     else reverse at once ("kinetic", seed 000)."""
+    linearise: Literal["sliding", "stuck"] | None = None
+    """Linear analyses (modal, forced): "sliding" (default; the constant kinetic level: no stiffness, the
+    viscous term as damping) or "stuck" (the coordinate held to the counter-surface)."""
 
     @model_validator(mode="after")
     def _levels(self):
@@ -150,12 +155,15 @@ class OneSided(Coordinate):
     """``[[one_sided]]``: one-sided spring with preload -- a tension-only strand or a
     compression-only support (seed 002 (1)-(2))."""
 
-    k: Positive
+    k: Positive["N/m", "N*m/rad"]
     """Stiffness."""
-    preload: float = 0.0
+    preload: Real["N", "N*m"] = 0.0
     """Element force magnitude at s = 0 (initial tension F0 of a strand)."""
     side: Literal["tension", "compression"] | None = None
     """Which side carries load: "tension" (engaged when stretched) or "compression"."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (engaged: a spring k; a preloaded strand taut) or "open" (slack); default:
+    its state at s = 0 (closed when preloaded)."""
 
     LEGACY_SIDE: ClassVar[dict] = {"lumped": "tension", "hybrid": "compression"}
 
@@ -191,18 +199,21 @@ class Gap(Coordinate):
     A lone ``lower`` or ``upper`` is a stop: the spring engaged beyond that bound only.
     ``law = "arctan"``: the smooth law (11.2) of a symmetric gap."""
 
-    k: Positive
+    k: Positive["N/m", "N*m/rad"]
     """Contact stiffness."""
-    delta: NonNegative | None = None
+    delta: NonNegative["m", "rad"] | None = None
     """Half the clearance of a symmetric gap: lower = -delta, upper = delta."""
-    lower: float | None = None
+    lower: Real["m", "rad"] | None = None
     """Lower bound of the clearance."""
-    upper: float | None = None
+    upper: Real["m", "rad"] | None = None
     """Upper bound of the clearance."""
     law: Literal["exact", "arctan"] = "exact"
     """Exact piecewise-linear law (11.1) or the smooth arctan law (11.2)."""
-    L: Positive = 1e3
+    L: Positive["1/m", "1/rad"] = 1e3
     """Sharpness of the arctan law (11.2)."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (a spring of its contact stiffness k: the default of a clearance, a gear
+    mesh in mesh) or "open" (no force); a stop (one bound) defaults to its state at s = 0."""
 
     @model_validator(mode="after")
     def _bounds(self):
@@ -221,7 +232,7 @@ class Gap(Coordinate):
     def element(self, where, kind, weight=None):
         if self.stop:
             side, bound = (1, self.upper) if self.upper is not None else (-1, self.lower)
-            return E.OneSided, dict(k=self.k, s_open=bound, side=side), False
+            return E.OneSided, dict(k=self.k, s_open=bound, side=side, linearise=self.linearise), False
         lower, upper = (-self.delta, self.delta) if self.delta is not None else (self.lower, self.upper)
         return E.Gap, dict(k=self.k, lower=lower, upper=upper, law=self.law, L=self.L), False
 
@@ -233,12 +244,14 @@ class Impact(Coordinate):
 
     restitution: Fraction
     """Restitution coefficient e in [0, 1]: s'+ = -e s'-."""
-    stop: float = 0.0
+    stop: Real["m", "rad"] = 0.0
     """Position of the stop."""
     side: Literal["lower", "upper"] = "lower"
     """"lower": s >= stop; "upper": s <= stop."""
-    v_rest: Positive | None = None
+    v_rest: Positive["m/s", "rad/s"] | None = None
     """Rebound speed below which the bouncing closes into persistent contact (default: relative 1e-9)."""
+    linearise: Literal["open", "closed"] | None = None
+    """Linear analyses: "open" (default: free flight) or "closed" (the coordinate held at the stop)."""
 
     @model_validator(mode="after")
     def _where_given(self):
@@ -255,8 +268,10 @@ class Impact(Coordinate):
 class CubicSpring(Coordinate):
     """``[[cubic_spring]]``: smooth cubic spring, force along s -k3 s^3 (textbook (8.20))."""
 
-    k3: float
+    k3: Real["N/m^3", "N*m/rad^3"]
     """Cubic stiffness (hardening for k3 > 0)."""
+    linearise: Literal["linear"] | None = None
+    """Linear analyses: "linear" (its linear part at s = 0: no stiffness)."""
 
     @model_validator(mode="after")
     def _where_given(self):
@@ -270,13 +285,13 @@ class CubicSpring(Coordinate):
 class Force(Coordinate):
     """``[[force]]``: external force along s: value + amplitude sin(omega t + phase) (+ weight)."""
 
-    value: float = 0.0
+    value: Real["N", "N*m"] = 0.0
     """Constant part."""
-    amplitude: float = 0.0
+    amplitude: Real["N", "N*m"] = 0.0
     """Harmonic amplitude."""
-    omega: NonNegative = 0.0
+    omega: NonNegative["rad/s"] = 0.0
     """Angular frequency, rad/s."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase, rad."""
     gravity: bool = False
     """Add the weight -g * inertia of the body ([constants] g)."""
@@ -299,17 +314,17 @@ class DistributedFriction(Table):
     """Name (the nodes' elements are named <name>@x=..)."""
     dof: str | None = None
     """DOF the friction acts on (default: the primary field)."""
-    from_: float | None = Field(default=None, alias="from")
+    from_: Real["m"] | None = Field(default=None, alias="from")
     """Start of the rough zone, m (default 0)."""
-    to: float | None = None
+    to: Real["m"] | None = None
     """End of the rough zone, m (default: the member's length)."""
-    intensity: NonNegative | None = None
+    intensity: NonNegative["N/m", "N*m/m"] | None = None
     """Kinetic friction per length (force or torque per m, e.g. f P / l of seed 003)."""
-    static_intensity: NonNegative | None = None
+    static_intensity: NonNegative["N/m", "N*m/m"] | None = None
     """Static friction per length (default: intensity)."""
-    mu: NonNegative | None = None
+    mu: NonNegative["1"] | None = None
     """Friction coefficient on the model's own weight per length."""
-    radius: Positive | None = None
+    radius: Positive["m"] | None = None
     """With mu on a torsion model: radius at which the friction acts, m."""
 
     @model_validator(mode="after")
@@ -327,16 +342,18 @@ class Contact(Coordinate):
     (11.4)): no force for lower <= s <= upper, beyond it F = -k d - c s' on the penetration d.  A lone
     ``lower`` or ``upper`` is a stop."""
 
-    k: Positive
+    k: Positive["N/m", "N*m/rad"]
     """Contact stiffness."""
-    c: NonNegative = 0.0
+    c: NonNegative["N*s/m", "N*m*s/rad"] = 0.0
     """Contact damping (a dashpot acting only in contact)."""
-    delta: NonNegative | None = None
+    delta: NonNegative["m", "rad"] | None = None
     """Half the clearance of a symmetric gap: lower = -delta, upper = delta."""
-    lower: float | None = None
+    lower: Real["m", "rad"] | None = None
     """Lower bound of the clearance."""
-    upper: float | None = None
+    upper: Real["m", "rad"] | None = None
     """Upper bound of the clearance."""
+    linearise: Literal["closed", "open"] | None = None
+    """Linear analyses: "closed" (default: its spring k and dashpot c) or "open" (no force)."""
 
     @model_validator(mode="after")
     def _bounds(self):
@@ -357,14 +374,17 @@ class Motor(Coordinate):
     dynamic characteristic T M' + M = (1 - s'/omega0)/nu (textbook (5.54), §5.10, (3.15)): the torque
     is one more state of the event solver's exact pieces; T = 0 is the static characteristic."""
 
-    omega0: Positive
+    omega0: Positive["rad/s"]
     """Ideal no-load speed omega_d0, rad/s."""
-    nu: Positive
+    nu: Positive["1/(N*m)"]
     """Slope nu_d of the static characteristic, 1/(N m): M = (1 - omega/omega0)/nu."""
-    T: NonNegative = 0.0
+    T: NonNegative["s"] = 0.0
     """Electromagnetic time constant T_d, s (0: the static characteristic, no torque state)."""
-    torque0: float = 0.0
+    torque0: Real["N*m"] = 0.0
     """Torque at t = 0 (default 0: the motor switched on at t = 0; only with T > 0), N m."""
+    linearise: Literal["characteristic"] | None = None
+    """Linear analyses: "characteristic" (its dynamic characteristic as a complex stiffness in the forced
+    response; the undamped modes do not see it)."""
 
     @model_validator(mode="after")
     def _where_given(self):

@@ -4,22 +4,22 @@ from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
-from pydantic import Discriminator, Field, Tag, model_validator
+from pydantic import Discriminator, Tag, model_validator
 
-from .base import Count, NonNegative, Positive, Table, rule
+from .base import Count, Name, NonNegative, Number, Positive, Real, Table, rule
 
 
 class Material(Table):
     """Isotropic material; in ``[material]`` the defaults of every segment, in a segment's
     ``material`` an override of some of them."""
 
-    E: Positive | None = None
+    E: Positive["Pa"] | None = None
     """Young's modulus, Pa."""
-    G: Positive | None = None
+    G: Positive["Pa"] | None = None
     """Shear modulus, Pa (or give nu)."""
-    nu: Annotated[float, Field(gt=-1, lt=0.5)] | None = None
+    nu: Number(gt=-1, lt=0.5)["1"] | None = None
     """Poisson's ratio in (-1, 0.5): G = E / (2 (1 + nu)) (or give G)."""
-    rho: Positive | None = None
+    rho: Positive["kg/m^3"] | None = None
     """Density, kg/m^3."""
 
     @model_validator(mode="after")
@@ -40,7 +40,7 @@ class ModelSettings(Table):
     """Consistent mass, or lumped (row sum; HRZ for Hermite elements)."""
     order: Literal[1, 2] = 2
     """Lagrange order of rods and Timoshenko beams (1 linear, 2 quadratic); not for Euler-Bernoulli."""
-    shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    shear_coefficient: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient kappa (default: Cowper's value for circle/tube sections)."""
 
     @model_validator(mode="after")
@@ -63,9 +63,9 @@ class CircleSection(Table):
     """Solid circular section."""
 
     shape: Literal["circle"]
-    d: Positive
+    d: Positive["m"]
     """Diameter, m."""
-    kappa: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    kappa: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient (default: Cowper's value)."""
 
 
@@ -73,11 +73,11 @@ class TubeSection(Table):
     """Hollow circular section."""
 
     shape: Literal["tube"]
-    d: Positive
+    d: Positive["m"]
     """Outer diameter, m."""
-    di: Positive
+    di: Positive["m"]
     """Inner diameter, m (< d)."""
-    kappa: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    kappa: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient (default: Cowper's value)."""
 
     @model_validator(mode="after")
@@ -91,15 +91,15 @@ class ExplicitSection(Table):
     """Section constants given directly (at least one of them)."""
 
     shape: Literal["explicit"] = "explicit"
-    A: Positive | None = None
+    A: Positive["m^2"] | None = None
     """Area, m^2 (axial and bending models)."""
-    I: Positive | None = None
+    I: Positive["m^4"] | None = None
     """Second moment of area for bending, m^4."""
-    J: Positive | None = None
+    J: Positive["m^4"] | None = None
     """Torsion constant, m^4."""
-    Ip: Positive | None = None
+    Ip: Positive["m^4"] | None = None
     """Polar moment of area for the rotary inertia rho Ip of torsion, m^4 (default J)."""
-    kappa: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    kappa: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient (required for Timoshenko models with explicit sections)."""
 
     @model_validator(mode="after")
@@ -121,7 +121,7 @@ Section = Annotated[Union[Annotated[CircleSection, Tag("circle")], Annotated[Tub
 class Segment(Table):
     """``[[segment]]``: a uniform piece of shaft, consecutive from x = 0."""
 
-    length: Positive
+    length: Positive["m"]
     """Length, m."""
     elements: Count
     """Number of finite elements."""
@@ -129,35 +129,37 @@ class Segment(Table):
     """Cross-section: { shape = "circle", d }, { shape = "tube", d, di } or { A, I, J, Ip, kappa }."""
     material: Material | None = None
     """Per-segment override of [material] keys."""
-    rho_extra: NonNegative = 0.0
+    rho_extra: NonNegative["kg/m", "kg*m^2/m"] = 0.0
     """Extra distributed inertia per length (torsion: kg m^2/m as in (4.56); axial/bending: kg/m)."""
-    psi: NonNegative = 0.0
+    psi: NonNegative["1"] = 0.0
     """Dissipation coefficient of the material (hysteretic damping, complex stiffness (1 + 2 i psi/(4 pi)))."""
 
 
 class Support(Table):
     """``[[support]]`` at a node."""
 
-    x: float
+    name: Name | None = None
+    """Name of the support in the outputs (default: support[<index>] x=<x>)."""
+    x: Real["m"]
     """Position along the shaft, m."""
     type: Literal["clamped", "pinned", "spring"] = "clamped"
     """clamped (all DOFs), pinned (bending: w only) or spring (k, kr)."""
-    k: NonNegative = 0.0
+    k: NonNegative["N/m", "N*m/rad"] = 0.0
     """Spring support: translational / axial / torsional stiffness (N/m or N m/rad)."""
-    kr: NonNegative = 0.0
+    kr: NonNegative["N*m/rad"] = 0.0
     """Spring support, bending only: rotational stiffness, N m/rad."""
 
 
 class Point(Table):
     """``[[point]]``: lumped attachment at a node."""
 
-    x: float
+    x: Real["m"]
     """Position along the shaft, m."""
-    mass: NonNegative = 0.0
+    mass: NonNegative["kg"] = 0.0
     """Mass, kg (axial and bending)."""
-    inertia: NonNegative = 0.0
+    inertia: NonNegative["kg*m^2"] = 0.0
     """Moment of inertia, kg m^2: polar for torsion, diametral for the bending rotation DOF."""
-    k: NonNegative = 0.0
+    k: NonNegative["N/m", "N*m/rad"] = 0.0
     """Spring to ground at the node (per physics)."""
-    kr: NonNegative = 0.0
+    kr: NonNegative["N*m/rad"] = 0.0
     """Rotational spring to ground (bending only), N m/rad."""

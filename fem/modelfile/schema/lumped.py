@@ -3,17 +3,17 @@
 from __future__ import annotations
 
 import math
-from typing import Annotated, Literal, Union
+from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import NonNegative, Positive, Table, rule
+from .base import NonNegative, Number, Positive, Real, Table, rule
 
 
 class NodeEnd(Table):
     """An FE node as one end of a spring, damper or element (hybrid models): ``{ x = .., dof = .. }``."""
 
-    x: float
+    x: Real["m"]
     """Node position along the shaft, m."""
     dof: str | None = None
     """DOF name at the node (theta, u, w, w_x, phi; default: the primary field)."""
@@ -22,23 +22,28 @@ class NodeEnd(Table):
 End = Union[Annotated[str, Field(min_length=1)], NodeEnd]
 """A body or driver name, "ground", or (hybrid models) an FE node { x = .., dof = .. }."""
 Ends = Annotated[list[End], Field(min_length=2, max_length=2)]
-Ratios = Annotated[list[float], Field(min_length=2, max_length=2)]
+RATIO = ("1", "m/rad", "rad/m")
+"""Units of a transmission ratio: dimensionless, or a radius (m/rad: a belt or rack on a rotating body),
+or its inverse."""
+Ratios = Annotated[list[Real[RATIO]], Field(min_length=2, max_length=2)]
 
 
 class Body(Table):
     """``[[body]]``: a lumped body with one generalised coordinate x (displacement or angle)."""
 
+    one_coordinate: ClassVar[bool] = True
+
     name: Annotated[str, Field(min_length=1)]
     """Unique name (not "ground")."""
-    inertia: Positive
+    inertia: Positive["kg", "kg*m^2"]
     """Mass (kg) or moment of inertia (kg m^2) of the coordinate."""
-    inertia_rate: float = 0.0
+    inertia_rate: Real["kg/s", "kg*m^2/s"] = 0.0
     """d(inertia)/dt: variable mass m0 + delta t (seed 004 (1), Newton form), kg/s."""
-    reactive: float = 0.0
+    reactive: Real["1"] = 0.0
     """Reactive coefficient epsilon of seed 004 (reactive damping epsilon * inertia_rate)."""
-    x0: float = 0.0
+    x0: Real["m", "rad"] = 0.0
     """Initial displacement."""
-    v0: float = 0.0
+    v0: Real["m/s", "rad/s"] = 0.0
     """Initial velocity."""
 
     @model_validator(mode="after")
@@ -61,29 +66,31 @@ class Programme(Table):
     (``phi``, ``x``).  Time simulations of lumped models (method "event" or "regularised"); the
     linear analyses see the driver's constant/harmonic law only."""
 
+    one_coordinate: ClassVar[bool] = True
+
     law: Literal["cycloidal", "harmonic", "polynomial345", "constant_acceleration", "constant_velocity", "table"]
     """Law of the rise (and of the return unless return_law): a standard cam law or "table"."""
-    cam_speed: Positive
+    cam_speed: Positive["rad/s"]
     """Angular speed of the cam omega0, rad/s: phi = cam_speed (t - start) ((2.13): x' = omega0 Pi')."""
-    start: float = 0.0
+    start: Real["s"] = 0.0
     """Time at which the cycle starts (phi = 0; a table: its first angle), s; before it a periodic law
     is its periodic continuation (a non-periodic table must start at or before t = 0 and cover t_end)."""
-    stroke: float | None = None
+    stroke: Real["m", "rad"] | None = None
     """Standard laws: the rise height h (displacement or angle of the driven coordinate)."""
-    rise: Positive | None = None
+    rise: Positive["rad"] | None = None
     """Standard laws: cam angle of the rise, rad."""
-    top_dwell: NonNegative = 0.0
+    top_dwell: NonNegative["rad"] = 0.0
     """Standard laws: cam angle of the dwell at the top, rad."""
-    return_: Positive | None = Field(default=None, alias="return")
+    return_: Positive["rad"] | None = Field(default=None, alias="return")
     """Standard laws: cam angle of the return, rad."""
     return_law: Literal["cycloidal", "harmonic", "polynomial345", "constant_acceleration",
                         "constant_velocity"] | None = None
     """Standard laws: law of the return (default: law)."""
-    cycle: Positive = 2 * math.pi
+    cycle: Positive["rad"] = 2 * math.pi
     """Standard laws: cam angle of one cycle, rad (the rest after the return is a dwell at 0)."""
-    phi: list[float] | None = None
+    phi: list[Real["rad"]] | None = None
     """law = "table": cam angles, rad (at least 3, strictly increasing)."""
-    x: list[float] | None = None
+    x: list[Real["m", "rad"]] | None = None
     """law = "table": the displacements at phi."""
     periodic: bool = True
     """law = "table": the table repeats with period phi[-1] - phi[0] (needs x[0] == x[-1])."""
@@ -127,23 +134,25 @@ class Driver(Table):
     Lumped models: a named coordinate (``name``) with an optional inertia; hybrid models: an FE DOF
     (``x``, ``dof``)."""
 
+    one_coordinate: ClassVar[bool] = True
+
     name: Annotated[str, Field(min_length=1)] | None = None
     """Name of the driven coordinate (lumped models: required; a body name for springs and elements)."""
-    x: float | None = None
+    x: Real["m"] | None = None
     """Hybrid models: position of the driven FE node, m."""
     dof: str | None = None
     """Hybrid models: driven DOF at the node (default: the primary field)."""
-    offset: float = 0.0
+    offset: Real["m", "rad"] = 0.0
     """Constant part of the motion."""
-    velocity: float = 0.0
+    velocity: Real["m/s", "rad/s"] = 0.0
     """Constant velocity (x = velocity t), m/s or rad/s."""
-    amplitude: float = 0.0
+    amplitude: Real["m", "rad"] = 0.0
     """Harmonic amplitude."""
-    omega: NonNegative = 0.0
+    omega: NonNegative["rad/s"] = 0.0
     """Angular frequency of the harmonic part, rad/s."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase of the harmonic part, rad."""
-    inertia: NonNegative = 0.0
+    inertia: NonNegative["kg", "kg*m^2"] = 0.0
     """Lumped models: inertia of the driven coordinate (enters the reactions only)."""
     programme: Programme | None = None
     """A programme (cam) law added to the motion: { law, cam_speed, stroke, rise, top_dwell, return, .. }
@@ -164,26 +173,30 @@ class Modulation(Table):
     the event solver (time simulations of lumped models; the linear analyses use the constant k, the
     stability chart is [analysis] type = "parametric")."""
 
-    depth: Annotated[float, Field(ge=0, lt=1)]
+    depth: Number(ge=0, lt=1)["1"]
     """Relative depth eps = dc/c0 of the pulsation, 0 <= depth < 1 (the stiffness stays positive)."""
-    omega: Positive
+    omega: Positive["rad/s"]
     """Angular frequency Omega of the pulsation, rad/s."""
-    phase: float = 0.0
+    phase: Real["rad"] = 0.0
     """Phase of the pulsation, rad (pi: k (1 + depth sin omega t))."""
 
 
 class Spring(Table):
     """``[[spring]]``: a linear spring (and parallel dashpot) acting on s = r_b x_b - r_a x_a."""
 
+    one_coordinate: ClassVar[bool] = True
+
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: spring[<index>] <a>-<b>, e.g. spring[2] motor-pinion)."""
     between: Ends
     """The two ends: body/driver names, "ground", or (hybrid) FE nodes { x = .., dof = .. }."""
     ratios: Ratios = [1.0, 1.0]
     """[r_a, r_b]: transmission ratios of the two ends (radii of a belt, ...)."""
-    k: NonNegative = 0.0
+    k: NonNegative["N/m", "N*m/rad"] = 0.0
     """Stiffness, N/m or N m/rad."""
-    c: NonNegative = 0.0
+    c: NonNegative["N*s/m", "N*m*s/rad"] = 0.0
     """Viscous coefficient of a parallel dashpot, N s/m or N m s/rad."""
-    psi: NonNegative = 0.0
+    psi: NonNegative["1"] = 0.0
     """Dissipation coefficient of the spring (hysteretic damping in harmonic analysis)."""
     modulation: Modulation | None = None
     """Periodically varying stiffness k (1 - depth sin(omega t + phase)): { depth, omega, phase }."""
@@ -200,20 +213,24 @@ class Spring(Table):
 class Damper(Table):
     """``[[damper]]``: a viscous damper acting on s = r_b x_b - r_a x_a."""
 
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: damper[<index>] <a>-<b>)."""
     between: Ends
     """The two ends: body/driver names, "ground", or (hybrid) FE nodes { x = .., dof = .. }."""
     ratios: Ratios = [1.0, 1.0]
     """[r_a, r_b]: transmission ratios of the two ends."""
-    c: NonNegative
+    c: NonNegative["N*s/m", "N*m*s/rad"]
     """Viscous coefficient, N s/m or N m s/rad."""
 
 
 class Gear(Table):
     """``[[gear]]``: rigid transmission x_b = ratio x_a, eliminated exactly (lumped models)."""
 
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name in the outputs (default: gear[<index>] <a>-<b>)."""
     between: Annotated[list[Annotated[str, Field(min_length=1)]], Field(min_length=2, max_length=2)]
     """[driving, driven] body names."""
-    ratio: float
+    ratio: Real[RATIO]
     """Transmission ratio u (finite, non-zero)."""
 
     @model_validator(mode="after")

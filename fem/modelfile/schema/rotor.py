@@ -10,23 +10,29 @@ exactly one of the two; a list of speeds may also be a grid ``{ start, stop, poi
 """
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Count, Fraction, NonNegative, Pair, Positive, Table, rule
+from .base import Count, Fraction, Integer, NonNegative, Number, Positive, Real, Table, pair, rule
 
-Coefficient = float | Annotated[list[float], Field(min_length=2)]
+def coefficient(unit: str):
+    """A bearing coefficient in ``unit``: a number or a list over the bearing's speeds."""
+    return Real[unit] | Annotated[list[Real[unit]], Field(min_length=2)]
+
+
+BearingStiffness = coefficient("N/m")
+BearingDamping = coefficient("N*s/m")
 
 
 class SpeedGrid(Table):
-    """An evenly spaced grid of speeds (unit of the key that holds it: rad/s or rev/min)."""
+    """An evenly spaced grid of speeds in rad/s."""
 
-    start: NonNegative
-    """First speed."""
-    stop: Positive
-    """Last speed (> start)."""
-    points: Annotated[int, Field(ge=2)] = 21
+    start: NonNegative["rad/s"]
+    """First speed, rad/s."""
+    stop: Positive["rad/s"]
+    """Last speed (> start), rad/s."""
+    points: Integer(ge=2) = 21
     """Number of speeds (>= 2)."""
 
     @model_validator(mode="after")
@@ -36,7 +42,17 @@ class SpeedGrid(Table):
         return self
 
 
-SpeedList = Annotated[list[NonNegative], Field(min_length=2)] | SpeedGrid
+class SpeedGridRpm(SpeedGrid):
+    """An evenly spaced grid of speeds in rev/min."""
+
+    start: NonNegative["rpm"]
+    """First speed, rev/min."""
+    stop: Positive["rpm"]
+    """Last speed (> start), rev/min."""
+
+
+SpeedList = Annotated[list[NonNegative["rad/s"]], Field(min_length=2)] | SpeedGrid
+SpeedListRpm = Annotated[list[NonNegative["rpm"]], Field(min_length=2)] | SpeedGridRpm
 
 
 def _one_of(table, keys: tuple[str, str], required: bool) -> None:
@@ -51,13 +67,13 @@ class RotorMaterial(Table):
     """Isotropic shaft material: in ``[rotor.material]`` the defaults of every segment, in a
     segment's ``material`` an override of some of them."""
 
-    E: Positive | None = None
+    E: Positive["Pa"] | None = None
     """Young's modulus, Pa."""
-    G: Positive | None = None
+    G: Positive["Pa"] | None = None
     """Shear modulus, Pa (or give nu)."""
-    nu: Annotated[float, Field(gt=-1, lt=0.5)] | None = None
+    nu: Number(gt=-1, lt=0.5)["1"] | None = None
     """Poisson's ratio in (-1, 0.5): G = E / (2 (1 + nu)) (or give G)."""
-    rho: NonNegative | None = None
+    rho: NonNegative["kg/m^3"] | None = None
     """Density, kg/m^3 (0: a massless shaft, the Jeffcott idealisation)."""
 
     @model_validator(mode="after")
@@ -73,17 +89,17 @@ class RotorLayer(Table):
     (own shear parameter Phi; ROSS's convention: shaft elements at one node number are summed).
     ``mass_only = true``: inertia only (translational, rotary and polar), no stiffness."""
 
-    d: Positive
+    d: Positive["m"]
     """Outer diameter at the segment's start, m."""
-    di: NonNegative
+    di: NonNegative["m"]
     """Bore at the start, m (e.g. the segment's d for a sleeve on the shaft; layers must not overlap)."""
-    d_end: Positive | None = None
+    d_end: Positive["m"] | None = None
     """Outer diameter at the end, m (default: d)."""
-    di_end: NonNegative | None = None
+    di_end: NonNegative["m"] | None = None
     """Bore at the end, m (default: di)."""
     material: RotorMaterial | None = None
     """Override of [rotor.material] for this layer (E and G also set its Phi when mass_only)."""
-    shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    shear_coefficient: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient of the layer (default: Cowper's value for its annulus)."""
     mass_only: bool = False
     """True: the layer adds mass, rotary and polar inertia but no stiffness (a shrunk-on impeller, a sleeve)."""
@@ -94,23 +110,23 @@ class RotorSegment(Table):
     Timoshenko elements (shear, rotary inertia, gyroscopic matrices); linear taper when d_end or
     di_end is given."""
 
-    length: Positive
+    length: Positive["m"]
     """Length, m."""
     elements: Count
     """Number of equal Timoshenko elements."""
-    d: Positive
+    d: Positive["m"]
     """Outer diameter at the start, m."""
-    d_end: Positive | None = None
+    d_end: Positive["m"] | None = None
     """Outer diameter at the end, m (default: d; otherwise a linear taper)."""
-    di: NonNegative = 0.0
+    di: NonNegative["m"] = 0.0
     """Bore at the start, m (0: solid)."""
-    di_end: NonNegative | None = None
+    di_end: NonNegative["m"] | None = None
     """Bore at the end, m (default: di)."""
     material: RotorMaterial | None = None
     """Override of [rotor.material] for this segment."""
-    shear_coefficient: Annotated[float, Field(gt=0, le=1.5)] | None = None
+    shear_coefficient: Number(gt=0, le=1.5)["1"] | None = None
     """Timoshenko shear coefficient kappa (default: Cowper's value for the hollow circle)."""
-    added_mass_per_length: NonNegative = 0.0
+    added_mass_per_length: NonNegative["kg/m"] = 0.0
     """Non-structural mass carried by the segment, kg/m (translational inertia only, no stiffness)."""
     layer: Annotated[list[RotorLayer], Field(default_factory=list)]
     """[[rotor.segment.layer]]: further concentric layers (own material; mass_only for inertia without stiffness)."""
@@ -120,21 +136,21 @@ class RotorDisc(Table):
     """``[[rotor.disc]]``: a rigid disc at a shaft node, given by its inertia (mass, Id, Ip) or by
     its geometry (width, d, di, rho: a uniform annulus), not both."""
 
-    x: float
+    x: Real["m"]
     """Position along the shaft, m (a node: segment end or element boundary)."""
-    mass: NonNegative | None = None
+    mass: NonNegative["kg"] | None = None
     """Mass, kg."""
-    Id: NonNegative | None = None
+    Id: NonNegative["kg*m^2"] | None = None
     """Diametral moment of inertia about the disc's centre, kg m^2."""
-    Ip: NonNegative | None = None
+    Ip: NonNegative["kg*m^2"] | None = None
     """Polar moment of inertia, kg m^2 (gyroscopic moments Ip Omega)."""
-    width: Positive | None = None
+    width: Positive["m"] | None = None
     """Geometry: axial width, m."""
-    d: Positive | None = None
+    d: Positive["m"] | None = None
     """Geometry: outer diameter, m."""
-    di: NonNegative | None = None
+    di: NonNegative["m"] | None = None
     """Geometry: bore, m (default 0)."""
-    rho: Positive | None = None
+    rho: Positive["kg/m^3"] | None = None
     """Geometry: density, kg/m^3 (default: that of [rotor.material])."""
     name: str = ""
     """Label in outputs."""
@@ -160,37 +176,41 @@ class RotorBearing(Table):
     ``extrapolate`` says).  Stiffness may have any sign (seals); the damping's symmetric part must be
     positive semidefinite (cyy, czz >= 0, cyy czz >= ((cyz + czy)/2)^2); some direct coefficient != 0."""
 
-    x: float
+    x: Real["m"]
     """Position along the shaft, m (a node)."""
-    kyy: Coefficient = 0.0
+    kyy: BearingStiffness = 0.0
     """Direct stiffness in y, N/m (any sign: a seal's may be negative)."""
-    kyz: Coefficient = 0.0
+    kyz: BearingStiffness = 0.0
     """Cross-coupled stiffness, N/m (force in y per displacement in z)."""
-    kzy: Coefficient = 0.0
+    kzy: BearingStiffness = 0.0
     """Cross-coupled stiffness, N/m (force in z per displacement in y)."""
-    kzz: Coefficient = 0.0
+    kzz: BearingStiffness = 0.0
     """Direct stiffness in z, N/m (any sign)."""
-    cyy: Coefficient = 0.0
+    cyy: BearingDamping = 0.0
     """Direct damping in y, N s/m (>= 0)."""
-    cyz: Coefficient = 0.0
+    cyz: BearingDamping = 0.0
     """Cross-coupled damping, N s/m."""
-    czy: Coefficient = 0.0
+    czy: BearingDamping = 0.0
     """Cross-coupled damping, N s/m."""
-    czz: Coefficient = 0.0
+    czz: BearingDamping = 0.0
     """Direct damping in z, N s/m (>= 0)."""
-    speeds: Annotated[list[NonNegative], Field(min_length=2)] | None = None
+    speeds: Annotated[list[NonNegative["rad/s"]], Field(min_length=2)] | None = None
     """Speeds of a coefficient table, rad/s, increasing."""
-    speeds_rpm: Annotated[list[NonNegative], Field(min_length=2)] | None = None
+    speeds_rpm: Annotated[list[NonNegative["rpm"]], Field(min_length=2)] | None = None
     """Speeds of a coefficient table, rev/min, increasing (or give speeds)."""
-    interpolation: Literal["linear", "pchip", "spline"] = "linear"
+    interpolation: Literal["linear", "pchip", "spline", "smoothing-spline"] = "linear"
     """Interpolation of a table between its speeds (pchip: shape-preserving cubic; spline: cubic spline
-    through the points, not-a-knot ends)."""
-    extrapolate: Literal["refuse", "hold", "linear"] = "refuse"
-    """A speed outside the table: refuse (an error), hold (the end values) or linear (the interpolant's
-    tangent line at the table's end); hold and linear warn, naming the bearing and the speeds."""
-    k_axial: NonNegative = 0.0
+    through the points, not-a-knot ends; smoothing-spline: ROSS's convention, a cubic smoothing spline
+    with s = number of points (scipy's UnivariateSpline) -- not an interpolant, it misses the table's
+    points)."""
+    extrapolate: Literal["refuse", "hold", "linear", "continue"] = "refuse"
+    """A speed outside the table: refuse (an error), hold (the end values), linear (the interpolant's
+    tangent line at the table's end) or continue (the interpolant's end pieces continued; with
+    smoothing-spline ROSS's extrapolation); hold, linear and continue warn, naming the bearing and the
+    speeds."""
+    k_axial: NonNegative["N/m"] = 0.0
     """Thrust-bearing stiffness on u, N/m (dofs = "full" only)."""
-    c_axial: NonNegative = 0.0
+    c_axial: NonNegative["N*s/m"] = 0.0
     """Thrust-bearing damping on u, N s/m (dofs = "full" only)."""
     pedestal: str | None = None
     """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
@@ -215,31 +235,31 @@ class RotorJournalBearing(Table):
     every table speed and the 8 coefficients there (modal, campbell, forced use the table; a run-up,
     drivefem simulate, applies the nonlinear film force instead)."""
 
-    x: float
+    x: Real["m"]
     """Position along the shaft, m (a node)."""
-    diameter: Positive
+    diameter: Positive["m"]
     """Journal diameter D, m."""
-    length: Positive
+    length: Positive["m"]
     """Bearing length L, m."""
-    clearance: Positive
+    clearance: Positive["m"]
     """Radial clearance c, m (typically 1e-3 D)."""
-    viscosity: Positive
+    viscosity: Positive["Pa*s"]
     """Lubricant dynamic viscosity mu, Pa s (isoviscous film)."""
-    load: Positive | None = None
+    load: Positive["N"] | None = None
     """Static load the bearing carries, N (default: the rotor's weight share on rigid supports at its bearings)."""
-    load_angle_deg: float = -90.0
+    load_angle_deg: Real["deg"] = -90.0
     """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z (-90: gravity along -z)."""
     film: Literal["reynolds", "short"] = "reynolds"
     """reynolds: finite-length film solved by finite elements; short: Ocvirk's short-bearing closed form (pi film)."""
     cavitation: Literal["reynolds", "gumbel"] = "reynolds"
     """Film rupture of the finite film: reynolds (Swift-Stieber: p >= 0 with zero gradient at rupture) or gumbel (half-Sommerfeld)."""
-    grooves_deg: Annotated[list[Pair], Field(max_length=8)] = []
+    grooves_deg: Annotated[list[pair("deg")], Field(max_length=8)] = []
     """Axial supply grooves at ambient pressure, [[centre, width], ...] in degrees (centre from +y towards +z; finite film only)."""
-    mesh: Annotated[list[Annotated[int, Field(ge=2, le=2000)]], Field(min_length=2, max_length=2)] = [144, 16]
+    mesh: Annotated[list[Integer(ge=2, le=2000)], Field(min_length=2, max_length=2)] = [144, 16]
     """Finite film mesh: [elements around (>= 12), elements along the half length]."""
-    speeds: Annotated[list[Positive], Field(min_length=2)] | None = None
+    speeds: Annotated[list[Positive["rad/s"]], Field(min_length=2)] | None = None
     """Speeds of the coefficient table, rad/s (> 0, increasing)."""
-    speeds_rpm: Annotated[list[Positive], Field(min_length=2)] | SpeedGrid | None = None
+    speeds_rpm: Annotated[list[Positive["rpm"]], Field(min_length=2)] | SpeedGridRpm | None = None
     """Speeds of the coefficient table, rev/min (or give speeds): a list or a grid { start, stop, points }."""
     interpolation: Literal["linear", "pchip"] = "pchip"
     """Interpolation of the table between its speeds."""
@@ -262,37 +282,39 @@ class RotorRollingBearing(Table):
     speed; the linear analyses use the stiffness at the static load (averaged over the cage
     positions), a run-up the nonlinear clearance law element by element."""
 
-    x: float
+    unit_choice: ClassVar[dict] = {"contact_stiffness": ("element", {"ball": (0,), "roller": (1,)})}
+
+    x: Real["m"]
     """Position along the shaft, m (a node)."""
     element: Literal["ball", "roller"] = "ball"
     """Rolling elements: ball (point contact) or roller (line contact)."""
-    elements: Annotated[int, Field(ge=3)]
+    elements: Integer(ge=3)
     """Number of rolling elements Z."""
-    element_diameter: Positive | None = None
+    element_diameter: Positive["m"] | None = None
     """Ball or roller diameter D, m."""
-    pitch_diameter: Positive | None = None
+    pitch_diameter: Positive["m"] | None = None
     """Pitch diameter d_m, m."""
-    contact_angle_deg: Annotated[float, Field(ge=0, lt=90)] = 0.0
+    contact_angle_deg: Number(ge=0, lt=90)["deg"] = 0.0
     """Contact angle alpha, degrees."""
-    clearance: float = 0.0
+    clearance: Real["m"] = 0.0
     """Radial clearance (play per side: half the diametral clearance), m; negative: a preload."""
-    inner_conformity: Annotated[float, Field(gt=0.5, lt=1)] = 0.52
+    inner_conformity: Number(gt=0.5, lt=1)["1"] = 0.52
     """Ball bearings: inner groove radius / ball diameter."""
-    outer_conformity: Annotated[float, Field(gt=0.5, lt=1)] = 0.52
+    outer_conformity: Number(gt=0.5, lt=1)["1"] = 0.52
     """Ball bearings: outer groove radius / ball diameter."""
-    roller_length: Positive | None = None
+    roller_length: Positive["m"] | None = None
     """Roller bearings: effective roller length, m."""
-    modulus: Positive = 208e9
+    modulus: Positive["Pa"] = 208e9
     """Young's modulus of rings and elements, Pa."""
-    poisson: Annotated[float, Field(gt=-1, lt=0.5)] = 0.3
+    poisson: Number(gt=-1, lt=0.5)["1"] = 0.3
     """Poisson's ratio of rings and elements."""
-    contact_stiffness: Positive | None = None
+    contact_stiffness: Positive["N/m^1.5", "N/m^(10/9)"] | None = None
     """Load-deflection constant K_n of one element between both races, N/m^n (instead of the geometry)."""
-    damping: NonNegative = 0.0
+    damping: NonNegative["N*s/m"] = 0.0
     """Viscous damping of the bearing in y and z, N s/m."""
-    load: NonNegative | None = None
+    load: NonNegative["N"] | None = None
     """Static load the bearing carries, N (default: the rotor's weight share)."""
-    load_angle_deg: float = -90.0
+    load_angle_deg: Real["deg"] = -90.0
     """Direction of the static load the shaft puts on the bearing, degrees from +y towards +z."""
     pedestal: str | None = None
     """Name of the [[rotor.pedestal]] the bearing sits on (default: ground)."""
@@ -306,23 +328,23 @@ class RotorSqueezeFilmDamper(Table):
     linear analyses use the centring stiffness and the film's damping at the static position, a
     run-up the nonlinear film force."""
 
-    x: float
+    x: Real["m"]
     """Position along the shaft, m (a node)."""
-    diameter: Positive
+    diameter: Positive["m"]
     """Damper journal diameter D, m."""
-    length: Positive
+    length: Positive["m"]
     """Damper land length L, m."""
-    clearance: Positive
+    clearance: Positive["m"]
     """Radial clearance c, m."""
-    viscosity: Positive
+    viscosity: Positive["Pa*s"]
     """Lubricant dynamic viscosity mu, Pa s."""
     film: Literal["pi", "2pi"] = "pi"
     """pi: cavitated film (half the circumference pressurised); 2pi: full film."""
-    centering_stiffness: NonNegative = 0.0
+    centering_stiffness: NonNegative["N/m"] = 0.0
     """Stiffness of the centring spring (squirrel cage) in y and z, N/m."""
-    load: NonNegative = 0.0
+    load: NonNegative["N"] = 0.0
     """Static load on the damper, N (carried by the centring spring)."""
-    load_angle_deg: float = -90.0
+    load_angle_deg: Real["deg"] = -90.0
     """Direction of the static load, degrees from +y towards +z."""
     pedestal: str | None = None
     """Name of the [[rotor.pedestal]] the damper sits on (default: ground)."""
@@ -335,15 +357,15 @@ class RotorPedestal(Table):
 
     name: Annotated[str, Field(min_length=1)]
     """Name the bearings refer to."""
-    mass: Positive
+    mass: Positive["kg"]
     """Mass, kg (moves in y and z)."""
-    kyy: Positive
+    kyy: Positive["N/m"]
     """Stiffness to ground in y, N/m."""
-    kzz: Positive
+    kzz: Positive["N/m"]
     """Stiffness to ground in z, N/m."""
-    cyy: NonNegative = 0.0
+    cyy: NonNegative["N*s/m"] = 0.0
     """Damping to ground in y, N s/m."""
-    czz: NonNegative = 0.0
+    czz: NonNegative["N*s/m"] = 0.0
     """Damping to ground in z, N s/m."""
 
 
@@ -351,25 +373,25 @@ class RotorCoupling(Table):
     """``[[rotor.coupling]]``: a flexible coupling at a junction of two segments (the shaft is cut
     there and joined by springs and dampers)."""
 
-    x: float
+    x: Real["m"]
     """Position, m: a junction of two [[rotor.segment]]s."""
-    k_lateral: Positive
+    k_lateral: Positive["N/m"]
     """Lateral stiffness (v, w), N/m."""
-    k_angular: Positive
+    k_angular: Positive["N*m/rad"]
     """Angular stiffness (theta_y, theta_z), N m/rad."""
-    k_axial: NonNegative = 0.0
+    k_axial: NonNegative["N/m"] = 0.0
     """Axial stiffness, N/m (dofs = "full": > 0)."""
-    k_torsion: NonNegative = 0.0
+    k_torsion: NonNegative["N*m/rad"] = 0.0
     """Torsional stiffness, N m/rad (dofs = "full": > 0)."""
-    c_lateral: NonNegative = 0.0
+    c_lateral: NonNegative["N*s/m"] = 0.0
     """Lateral damping, N s/m."""
-    c_angular: NonNegative = 0.0
+    c_angular: NonNegative["N*m*s/rad"] = 0.0
     """Angular damping, N m s/rad."""
-    mass: NonNegative = 0.0
+    mass: NonNegative["kg"] = 0.0
     """Own mass, kg (split equally between the two ends)."""
-    Id: NonNegative = 0.0
+    Id: NonNegative["kg*m^2"] = 0.0
     """Own diametral inertia, kg m^2."""
-    Ip: NonNegative = 0.0
+    Ip: NonNegative["kg*m^2"] = 0.0
     """Own polar inertia, kg m^2."""
     name: str = ""
     """Label in outputs."""
@@ -378,7 +400,7 @@ class RotorCoupling(Table):
 class RotorSupport(Table):
     """``[[rotor.support]]``: a rigid constraint: the listed DOFs of the node at x are held at zero."""
 
-    x: float
+    x: Real["m"]
     """Position, m (a node)."""
     dofs: Annotated[list[Literal["u", "v", "w", "theta_x", "theta_y", "theta_z"]], Field(min_length=1)] = ["v", "w"]
     """Held DOFs (u and theta_x only with dofs = "full")."""
@@ -421,13 +443,13 @@ class RotorAnalysis(Table):
     type: Literal["modal", "forced", "campbell", "simulate"] = "modal"
     """Default command: modal (complex modes at a speed), forced (unbalance response), campbell,
     simulate (the run-up of [run_up] with its rubs)."""
-    speed: NonNegative | None = None
+    speed: NonNegative["rad/s"] | None = None
     """Modal: spin speed, rad/s (or speed_rpm; default 0)."""
-    speed_rpm: NonNegative | None = None
+    speed_rpm: NonNegative["rpm"] | None = None
     """Modal: spin speed, rev/min."""
     modes: Count | None = None
     """Modes (one per conjugate pair, lowest |lambda| first; default 6, capped at the DOFs)."""
-    tolerance: Annotated[float, Field(gt=0, lt=1)] = 1e-6
+    tolerance: Number(gt=0, lt=1)["1"] = 1e-6
     """Relative eigen-residual above which a mode is reported as not reliable."""
 
     @model_validator(mode="after")
@@ -442,28 +464,35 @@ class CampbellTable(Table):
 
     speeds: SpeedList | None = None
     """Speeds, rad/s: a list (increasing, >= 0) or a grid { start, stop, points }."""
-    speeds_rpm: SpeedList | None = None
+    speeds_rpm: SpeedListRpm | None = None
     """Speeds, rev/min (or give speeds)."""
     modes: Count | None = None
     """Tracked modes (default: [analysis] modes, else 6)."""
-    orders: Annotated[list[Positive], Field(min_length=1)] = [1.0]
+    orders: Annotated[list[Positive["1"]], Field(min_length=1)] = [1.0]
     """Excitation orders k of the lines omega = k Omega (1: synchronous)."""
     critical: bool = True
     """Find the critical speeds (roots of omega_j(Omega) = k Omega by Brent's method)."""
+    operating_range: Annotated[list[Positive["rad/s"]], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rad/s, shaded on the diagram (default: [unbalance_response]'s)."""
+    operating_range_rpm: Annotated[list[Positive["rpm"]], Field(min_length=2, max_length=2)] | None = None
+    """Operating speed range [min, max], rev/min."""
 
     @model_validator(mode="after")
     def _speeds(self):
         _one_of(self, ("speeds", "speeds_rpm"), required=True)
+        _one_of(self, ("operating_range", "operating_range_rpm"), required=False)
         return self
 
 
 class RotorProbe(Table):
     """``[[unbalance_response.probe]]``: a response output at a node."""
 
-    x: float
+    x: Real["m"]
     """Position, m (a node)."""
     direction: Literal["v", "w", "major"] = "major"
     """v, w, or the orbit's semi-major axis."""
+    name: Annotated[str, Field(min_length=1)] | None = None
+    """Name of the output (default: the name of the disc, bearing or coupling at x, else direction@x=..)."""
 
 
 class UnbalanceResponseTable(Table):
@@ -473,11 +502,11 @@ class UnbalanceResponseTable(Table):
 
     speeds: SpeedList | None = None
     """Speeds, rad/s (> 0): a list or a grid { start, stop, points }."""
-    speeds_rpm: SpeedList | None = None
+    speeds_rpm: SpeedListRpm | None = None
     """Speeds, rev/min (or give speeds)."""
-    operating_range: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    operating_range: Annotated[list[Positive["rad/s"]], Field(min_length=2, max_length=2)] | None = None
     """Operating speed range [min, max], rad/s (for the separation margins)."""
-    operating_range_rpm: Annotated[list[Positive], Field(min_length=2, max_length=2)] | None = None
+    operating_range_rpm: Annotated[list[Positive["rpm"]], Field(min_length=2, max_length=2)] | None = None
     """Operating speed range [min, max], rev/min."""
     probe: Annotated[list[RotorProbe], Field(default_factory=list)]
     """[[unbalance_response.probe]]: outputs (default: the orbit at every disc and bearing)."""
@@ -495,11 +524,11 @@ class UnbalanceTable(Table):
     """``[[unbalance]]``: a mass unbalance m_u e at a node, at an angle from +y towards +z in the
     rotating frame."""
 
-    x: float
+    x: Real["m"]
     """Position, m (a node)."""
-    magnitude: Positive
+    magnitude: Positive["kg*m"]
     """m_u e, kg m."""
-    phase_deg: float = 0.0
+    phase_deg: Real["deg"] = 0.0
     """Angle from +y towards +z, degrees."""
 
 
@@ -510,21 +539,21 @@ class RubTable(Table):
     contact with Newton's restitution (no ``stiffness``: method = "moreau"); Coulomb friction at the
     contact point.  Linear analyses (modal, campbell, forced) do not see it."""
 
-    x: float
+    x: Real["m"]
     """Position, m (a node)."""
-    clearance: Positive
+    clearance: Positive["m"]
     """Radial clearance, m."""
-    stiffness: Positive | None = None
+    stiffness: Positive["N/m"] | None = None
     """Contact stiffness, N/m (leave out: a rigid contact)."""
-    damping: NonNegative = 0.0
+    damping: NonNegative["N*s/m"] = 0.0
     """Contact damping, N s/m (compliant contact)."""
     restitution: Fraction = 0.5
     """Newton's restitution coefficient (rigid contact)."""
-    friction: NonNegative = 0.0
+    friction: NonNegative["1"] = 0.0
     """Coulomb friction coefficient at the contact point."""
-    radius: Positive | None = None
+    radius: Positive["m"] | None = None
     """Shaft radius at the contact, m (the surface speed Omega R; default: half the outer diameter there)."""
-    centre: Annotated[list[float], Field(min_length=2, max_length=2)] = [0.0, 0.0]
+    centre: Annotated[list[Real["m"]], Field(min_length=2, max_length=2)] = [0.0, 0.0]
     """Offset [c_y, c_z] of the stator centre from the undeformed shaft axis, m."""
     name: str = ""
     """Label in outputs."""
@@ -535,25 +564,25 @@ class RunUpTable(Table):
     linearly from speed_start to speed_end over duration; the reduced rotor (modes at rest plus
     attachment shapes at the rubs) is integrated with the [[rub]]s and [[unbalance]]s."""
 
-    speed_start: NonNegative | None = None
+    speed_start: NonNegative["rad/s"] | None = None
     """First speed, rad/s (or speed_start_rpm)."""
-    speed_start_rpm: NonNegative | None = None
+    speed_start_rpm: NonNegative["rpm"] | None = None
     """First speed, rev/min."""
-    speed_end: NonNegative | None = None
+    speed_end: NonNegative["rad/s"] | None = None
     """Last speed, rad/s (or speed_end_rpm; equal to speed_start: constant speed)."""
-    speed_end_rpm: NonNegative | None = None
+    speed_end_rpm: NonNegative["rpm"] | None = None
     """Last speed, rev/min."""
-    duration: Positive
+    duration: Positive["s"]
     """Duration of the ramp, s."""
     method: Literal["event", "moreau"] = "event"
     """event: compliant rubs, contact changes located exactly; moreau: rigid rubs (Moreau-Jean)."""
     modes: Count = 12
     """Retained modes at rest (plus two static attachment shapes per rub)."""
-    time_step: Positive | None = None
+    time_step: Positive["s"] | None = None
     """Moreau-Jean step, s (default: a 40th of the shortest retained period)."""
-    output_step: Positive | None = None
+    output_step: Positive["s"] | None = None
     """Sampling of the outputs, s (default: a 64th of the shortest revolution; at most 20 000 samples)."""
-    rtol: Annotated[float, Field(ge=1e-13, le=1e-3)] = 1e-8
+    rtol: Number(ge=1e-13, le=1e-3)["1"] = 1e-8
     """Relative tolerance of the event-located integrator."""
     start: Literal["steady", "rest"] = "steady"
     """steady: the linear synchronous orbit at speed_start (about the static state of bearings computed from their geometry); rest: zero displacement and velocity."""
@@ -566,4 +595,115 @@ class RunUpTable(Table):
     def _speeds(self):
         _one_of(self, ("speed_start", "speed_start_rpm"), required=True)
         _one_of(self, ("speed_end", "speed_end_rpm"), required=True)
+        return self
+
+
+class StaticLoadTable(Table):
+    """``[[static.load]]``: a static point force at a node (N)."""
+
+    x: Real["m"]
+    """Position, m (a node)."""
+    fy: Real["N"] = 0.0
+    """Force along y, N."""
+    fz: Real["N"] = 0.0
+    """Force along z, N."""
+    fx: Real["N"] = 0.0
+    """Axial force, N (dofs = "full")."""
+
+
+class StaticTable(Table):
+    """``[static]``: the static deflection of ``drivefem static`` (sag under gravity and point loads,
+    bearing loads); all keys optional (default: gravity 9.81 m/s^2 along -z, bearings at rest)."""
+
+    gravity: Annotated[list[Real["m/s^2"]], Field(min_length=3, max_length=3)] = [0.0, 0.0, -9.81]
+    """Acceleration of gravity (g_x, g_y, g_z), m/s^2."""
+    speed: NonNegative["rad/s"] | None = None
+    """Speed at which tabulated bearings are taken, rad/s (or speed_rpm; default: the [analysis] speed, else 0)."""
+    speed_rpm: NonNegative["rpm"] | None = None
+    """The same, rev/min."""
+    load: Annotated[list[StaticLoadTable], Field(default_factory=list)]
+    """[[static.load]]: point forces."""
+
+    @model_validator(mode="after")
+    def _speed(self):
+        _one_of(self, ("speed", "speed_rpm"), required=False)
+        return self
+
+
+class CriticalMapTable(Table):
+    """``[critical_map]``: the undamped critical speed map of ``drivefem critical-map`` (synchronous
+    critical speeds with every bearing replaced by an isotropic one of each stiffness), with the
+    model's own bearing stiffness overlaid; all keys optional."""
+
+    stiffness: Annotated[list[Positive["N/m"]], Field(min_length=2, max_length=2)] | None = None
+    """[lowest, highest] bearing stiffness, N/m (default: two decades either side of the model's bearings)."""
+    points: Integer(ge=3, le=400) = 41
+    """Stiffness values, logarithmically spaced."""
+    modes: Count = 4
+    """Forward critical speeds drawn (the lowest)."""
+    bearings: list[str] | None = None
+    """Names of the [[rotor.bearing]]s the map varies (default: every one with a positive direct stiffness);
+    the others (seals, dampers) are left out of the map."""
+
+
+class Level1StageTable(Table):
+    """``[[stability.api_level1.stage]]``: an impeller or axial stage (Wachel's anticipated cross-coupling)."""
+
+    x: Real["m"]
+    """Position, m."""
+    power: Positive["W"]
+    """Rated power of the stage, W."""
+    diameter: Positive["m"]
+    """Impeller diameter D_c, m (axial: blade pitch diameter D_t)."""
+    width: Positive["m"]
+    """Smaller of impeller discharge width and diffuser width H_c, m (axial: effective blade height H_t)."""
+    density_ratio: Positive["1"] = 1.0
+    """Discharge / suction gas density of the stage (centrifugal)."""
+    name: str = ""
+    """A name for reports."""
+
+
+class Level1Table(Table):
+    """``[stability.api_level1]``: the API 617 (7th ed.) / API RP 684 (2nd ed.) Level I screening:
+    log decrement of the first forward mode against cross-coupling 0 ... 10 Q_A at the maximum
+    continuous speed; Level II is required when Q0/QA < 2 or the log decrement at QA < 0.1."""
+
+    speed: Positive["rad/s"] | None = None
+    """Maximum continuous speed, rad/s (or speed_rpm; default: the top of the operating range)."""
+    speed_rpm: Positive["rpm"] | None = None
+    """Maximum continuous speed, rev/min."""
+    machine: Literal["centrifugal", "axial"] = "centrifugal"
+    """centrifugal (B_c = 3, density ratio) or axial (turbines, axial compressors: B_t = 1.5)."""
+    placement: Literal["auto", "mid-span", "stages"] = "auto"
+    """Where Q acts: mid-span (between-bearing rotors), the stages (overhung), auto (mid-span when every stage is
+    between the bearings)."""
+    exclude: list[str] = []
+    """Names of [[rotor.bearing]]s left out (seals: Q_A stands for them at Level I)."""
+    points: Integer(ge=3, le=201) = 21
+    """Cross-coupling values from 0 to 10 Q_A."""
+    stage: Annotated[list[Level1StageTable], Field(min_length=1)]
+    """[[stability.api_level1.stage]]: the stages."""
+
+    @model_validator(mode="after")
+    def _speed(self):
+        _one_of(self, ("speed", "speed_rpm"), required=False)
+        return self
+
+
+class StabilityTable(Table):
+    """``[stability]``: ``drivefem stability``: the stability threshold (lowest speed where a tracked
+    mode's log decrement crosses zero) over a speed range, and optionally the API Level I screening."""
+
+    speeds: SpeedList | None = None
+    """Speeds scanned, rad/s (> 0; the grid brackets, Brent's method converges): a list or a grid."""
+    speeds_rpm: SpeedListRpm | None = None
+    """The same, rev/min (default: the [campbell] speeds)."""
+    modes: Count | None = None
+    """Tracked modes (default: [campbell] modes, [analysis] modes, else 6)."""
+    api_level1: Level1Table | None = None
+    """[stability.api_level1]: the API Level I screening."""
+
+    @model_validator(mode="after")
+    def _speeds(self):
+        _one_of(self, ("speeds", "speeds_rpm"), required=False)
         return self

@@ -6,18 +6,18 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from .base import Count, Positive, Table, rule
+from .base import Count, Number, Positive, Real, Table, rule
 
 METHOD_KEYS = {"event": ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "output_step"),
                "regularised": ("regularisation", "penalty", "memory_time", "rtol", "max_step"),
                "moreau": ("dt", "theta", "tol", "max_iter", "max_events")}
-COMMON_KEYS = ("t_end", "method", "energy", "samples")
+COMMON_KEYS = ("t_end", "method", "energy", "samples", "record_every")
 
 
 class Simulation(Table):
     """``[simulation]``: time integration from t = 0 to ``t_end``."""
 
-    t_end: Positive
+    t_end: Positive["s"]
     """End time, s."""
     method: Literal["event", "moreau", "regularised"] = "event"
     """"event": exact event-driven (true stick, exact pieces); "moreau": Moreau-Jean time stepping;
@@ -28,30 +28,33 @@ class Simulation(Table):
     """Hybrid models: number of sampled field snapshots in the output (default 2000)."""
     max_events: Count | None = None
     """Event limit (event: 200000, moreau: 100000); reaching it stops the run, keeping what was computed."""
-    max_step: Positive | None = None
+    max_step: Positive["s"] | None = None
     """Largest step of the numeric pieces / exact-piece marching, s."""
     steps_per_period: Count | None = None
     """Event solver: marching steps per period of the highest frequency (default 12)."""
-    rtol: Positive | None = None
+    rtol: Positive["1"] | None = None
     """Relative tolerance of numerically integrated pieces (default 1e-12; regularised 1e-9)."""
-    rest_tol: Positive | None = None
+    rest_tol: Positive["1"] | None = None
     """Event solver: impact accumulation threshold, rebound speed / largest impact speed (default 1e-9)."""
-    output_step: Positive | None = None
+    output_step: Positive["s"] | None = None
     """Event solver: extra exact output samples every output_step seconds (plots, CSV)."""
-    regularisation: Positive | None = None
+    regularisation: Positive["m/s", "rad/s"] | None = None
     """Regularised: velocity scale of the smoothed friction law."""
-    penalty: Positive | None = None
+    penalty: Positive["N/m", "N*m/rad"] | None = None
     """Regularised: penalty stiffness of rigid stops."""
-    memory_time: Positive | None = None
+    memory_time: Positive["s"] | None = None
     """Regularised: time constant of the friction memory state."""
-    dt: Positive | None = None
+    dt: Positive["s"] | None = None
     """Moreau-Jean: time step, s (required for method = "moreau")."""
-    theta: Annotated[float, Field(ge=0.5, le=1)] | None = None
+    theta: Number(ge=0.5, le=1)["1"] | None = None
     """Moreau-Jean: theta of the theta-method (default 0.5)."""
-    tol: Positive | None = None
+    tol: Positive["1"] | None = None
     """Moreau-Jean: tolerance of the contact/friction projections (default 1e-10)."""
     max_iter: Count | None = None
     """Moreau-Jean: iteration limit of the projections (default 2000)."""
+    record_every: Count = 1
+    """Write every record_every-th recorded sample of the time history (CSV, --h5, plots); event instants
+    are always written, and the summaries (peak, rms, ...) use every sample."""
 
     @model_validator(mode="after")
     def _method_keys(self):
@@ -72,14 +75,14 @@ class Simulation(Table):
 class Constants(Table):
     """``[constants]``: physical constants."""
 
-    g: Positive = 9.81
+    g: Positive["m/s^2"] = 9.81
     """Gravitational acceleration, m/s^2."""
 
 
 class Initial(Table):
     """``[initial]`` (hybrid models): the initial state of the FE field."""
 
-    velocity: float = 0.0
+    velocity: Real["m/s", "rad/s"] = 0.0
     """Uniform velocity of the primary field (a rigid translation/rotation), m/s or rad/s."""
     state: Literal["rest", "linear_steady_state"] = "rest"
     """"rest", or the steady state of the linear FE model under the harmonic [[force]] tables."""
@@ -93,5 +96,5 @@ class Reduction(Table):
     """Number of retained modes."""
     static_correction: bool = True
     """Craig-Bampton (static shapes of the coupling DOFs) or free-interface modes only."""
-    threshold: Annotated[float, Field(gt=0, le=1)] = 0.95
+    threshold: Number(gt=0, le=1)["1"] = 0.95
     """Restitution share at every coupling DOF below which a warning is given."""

@@ -5,7 +5,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import Count, Positive, Table, rule
+from .base import SWEPT, Count, Integer, Positive, Table, rule
 
 
 class ResponseMeasure(Table):
@@ -17,7 +17,7 @@ class ResponseMeasure(Table):
     """A spring-like element: the magnitude of its force (tension of a strand)."""
     measure: Literal["amplitude", "max", "min", "peak", "h1"] = "amplitude"
     """Half peak-to-peak, max, min, max |.|, or the amplitude at the forcing frequency."""
-    scale: Positive = 1.0
+    scale: Positive["m", "rad", "N", "N*m"] = 1.0
     """The measure is divided by scale (e.g. F0 for a dynamic factor)."""
 
     @model_validator(mode="after")
@@ -27,7 +27,8 @@ class ResponseMeasure(Table):
         return self
 
 
-FrequencyRange = Annotated[list[Positive], Field(min_length=2, max_length=2)]
+FrequencyRange = Annotated[list[Positive["rad/s"]], Field(min_length=2, max_length=2)]
+RatioRange = Annotated[list[Positive["1"]], Field(min_length=2, max_length=2)]
 
 
 class Steady(Table):
@@ -38,28 +39,28 @@ class Steady(Table):
     """Harmonic balance with AFT, or shooting with the exact event-driven integrator."""
     omega: FrequencyRange | None = None
     """[start, stop] forcing frequency range, rad/s (continued from start to stop)."""
-    z: FrequencyRange | None = None
+    z: RatioRange | None = None
     """[start, stop] ratio range z = omega / omega_ref."""
-    omega_ref: Positive | None = None
+    omega_ref: Positive["rad/s"] | None = None
     """Reference frequency of z, rad/s."""
     harmonics: Count = 7
     """HB: number of harmonics."""
-    subharmonic: Annotated[int, Field(ge=1, le=20)] = 1
+    subharmonic: Integer(ge=1, le=20) = 1
     """Orbits of period subharmonic * 2 pi / omega."""
     samples: Count | None = None
     """HB: AFT time samples per period (at least 4 H + 2; default max(64, 8 H + 4), with sampled friction
     max(1024, 16 H), with sampled kinks max(256, 16 H))."""
-    regularisation: Positive = 1e-3
+    regularisation: Positive["m/s", "rad/s"] = 1e-3
     """HB: friction sign(w) ~ tanh(w / regularisation)."""
     response: ResponseMeasure = ResponseMeasure()
     """The plotted response: { body = .. } or { element = .., measure = .., scale = .. }."""
     stability: bool = True
     """Floquet multipliers (HB: variational equation; shooting: monodromy)."""
-    ds: Positive = 0.02
+    ds: Positive["1"] = 0.02
     """Initial arc-length step (scaled)."""
-    ds_max: Positive = 0.1
+    ds_max: Positive["1"] = 0.1
     """Largest arc-length step."""
-    ds_min: Positive = 1e-5
+    ds_min: Positive["1"] = 1e-5
     """Smallest arc-length step (the continuation stops below it)."""
     max_steps: Count = 2000
     """Continuation step limit."""
@@ -68,7 +69,7 @@ class Steady(Table):
     start: Literal["linear", "time"] = "linear"
     """HB: the first point from the "linear" guess, or from a "time" integration of start_periods periods
     starting at the bodies' x0/v0 (the way onto a subharmonic branch, textbook §8.4)."""
-    start_periods: Annotated[int, Field(ge=1, le=5_000)] = 100
+    start_periods: Integer(ge=1, le=5_000) = 100
     """HB, start = "time": response periods (forcing periods x subharmonic) integrated before HB."""
     backbone: bool = False
     """Also the nonlinear mode through the response DOF (backbone: frequency and damping ratio against
@@ -130,10 +131,14 @@ class Steady(Table):
 class GridAxis(Table):
     """A sweep axis as a grid."""
 
-    start: float
-    stop: float
+    start: Annotated[float, SWEPT]
+    """First value, in the unit of the swept key (a plain number; quantity strings: give the axis as a list)."""
+    stop: Annotated[float, SWEPT]
+    """Last value, in the unit of the swept key."""
     points: Count
+    """Number of values."""
     spacing: Literal["linear", "log"] = "linear"
+    """Linear or logarithmic spacing."""
 
     @model_validator(mode="after")
     def _log(self):
@@ -142,7 +147,7 @@ class GridAxis(Table):
         return self
 
 
-SweepValue = Union[bool, int, float, str]
+SweepValue = Union[bool, Annotated[int, SWEPT], Annotated[float, SWEPT], str]
 Axis = Union[Annotated[list[SweepValue], Field(min_length=1)], GridAxis]
 
 

@@ -6,7 +6,7 @@ from typing import Annotated
 
 from pydantic import Field, model_validator
 
-from .base import Name, Table, rule
+from .base import Name, Real, Table, rule
 
 
 class Join(Table):
@@ -14,7 +14,7 @@ class Join(Table):
 
     dof: Name
     """The super-element DOF (a name of its ``dofs`` list)."""
-    x: float
+    x: Real["m"]
     """Position of the shaft node, m."""
     field: Name | None = None
     """The shaft DOF's field at that node (default: the primary field: u, theta or w)."""

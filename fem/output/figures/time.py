@@ -6,10 +6,13 @@ import pathlib
 
 import numpy as np
 
+from .loads import MARKS, plot_loads
 
-def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
-    """Write ``time.png`` (x and v of all DOFs, events marked), ``phase_<dof>.png`` per body (not drivers)
-    and ``energy.png`` (E - E0 and the integrated work).  Returns the written paths."""
+
+def plot_time_history(result, out_dir, max_dofs: int = 6, outputs=None, title: str = "") -> list[pathlib.Path]:
+    """Write ``time.png`` (the named outputs: element deflections and loads, reactions, events marked;
+    without outputs: x and v of all DOFs), ``phase_<dof>.png`` per body (not drivers) and ``energy.png``
+    (E - E0 and the integrated work).  Returns the written paths."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -19,27 +22,29 @@ def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
     out.mkdir(parents=True, exist_ok=True)
     paths = []
     names = result.names[:max_dofs]
-    fig, ax = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
-    for i, n in enumerate(names):
-        ax[0].plot(result.t, result.x[i], lw=1, label=n)
-        ax[1].plot(result.t, result.v[i], lw=1, label=n)
-    marks = {"stick": "v", "slip": "^", "reversal": "x", "impact": "o", "contact_open": "s", "contact_close": "D"}
-    for kind, mk in marks.items():
-        tt = result.event_times(kind)
-        if tt.size and tt.size < 2000:
-            ax[1].plot(tt, 0 * tt, mk, ms=4, ls="none", label=kind)
-    ax[0].set_ylabel("x")
-    ax[1].set_ylabel("v")
-    ax[1].set_xlabel("t, s")
-    ax[0].legend(fontsize=7, loc="best")
-    ax[1].legend(fontsize=7, loc="best", ncol=3)
-    title = f"{result.method}" + (f", period {result.period:.6g} s" if result.period else "")
-    ax[0].set_title(title, fontsize=9)
-    fig.tight_layout()
-    p = out / "time.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
-    paths.append(p)
+    head = (title + ": " if title else "") + f"{result.method}" + (f", period {result.period:.6g} s" if result.period else "")
+    if outputs is not None and outputs.channels:
+        paths.append(plot_loads(outputs, out / "time.png", head, result.events))
+    else:
+        fig, ax = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+        for i, n in enumerate(names):
+            ax[0].plot(result.t, result.x[i], lw=1, label=n)
+            ax[1].plot(result.t, result.v[i], lw=1, label=n)
+        for kind, mk in MARKS.items():
+            tt = result.event_times(kind)
+            if tt.size and tt.size < 2000:
+                ax[1].plot(tt, 0 * tt, mk, ms=4, ls="none", label=kind)
+        ax[0].set_ylabel("displacement x [m | rad]")
+        ax[1].set_ylabel("velocity v [m/s | rad/s]")
+        ax[1].set_xlabel("time t [s]")
+        ax[0].legend(fontsize=7, loc="best")
+        ax[1].legend(fontsize=7, loc="best", ncol=3)
+        ax[0].set_title(head, fontsize=9)
+        fig.tight_layout()
+        p = out / "time.png"
+        fig.savefig(p, dpi=110)
+        plt.close(fig)
+        paths.append(p)
     for i, n in enumerate(names):
         if n in result.driven:
             continue                   # prescribed motion: no phase portrait
@@ -56,8 +61,8 @@ def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
             if drift > 2 * np.ptp(x - slope * result.t):       # a drifting (driven) body: show the cycle
                 x, lab = x - (slope * result.t + icpt), f"{n}: x - ({slope:.4g} t + {icpt:.3g})"
         a.plot(x, result.v[i], lw=0.8)
-        a.set_xlabel(lab)
-        a.set_ylabel(f"{n}: v")
+        a.set_xlabel(lab + " [m | rad]")
+        a.set_ylabel(f"{n}: v [m/s | rad/s]")
         a.set_title(f"phase portrait of {n}", fontsize=9)
         fig.tight_layout()
         p = out / f"phase_{n}.png"
@@ -68,7 +73,8 @@ def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
         fig, a = plt.subplots(figsize=(7, 3.5))
         a.plot(result.t, result.energy - result.energy[0], lw=1, label="E(t) - E(0)")
         a.plot(result.t, result.work, lw=1, ls="--", label="work of non-conservative forces")
-        a.set_xlabel("t, s")
+        a.set_xlabel("time t [s]")
+        a.set_ylabel("energy [J]")
         a.legend(fontsize=8)
         a.set_title(f"energy balance, relative error {result.energy_error:.2e}", fontsize=9)
         fig.tight_layout()
@@ -79,9 +85,10 @@ def plot_time_history(result, out_dir, max_dofs: int = 6) -> list[pathlib.Path]:
     return paths
 
 
-def plot_hybrid(result, out_dir) -> list[pathlib.Path]:
+def plot_hybrid(result, out_dir, outputs=None, title: str = "") -> list[pathlib.Path]:
     """``field.png`` (space-time map of the primary field), ``coupling.png`` (history of the DOFs
-    where elements act, events marked), ``energy.png`` (E - E0 against the integrated work)."""
+    where elements act, events marked), ``loads.png`` (the named outputs: element loads, reactions),
+    ``energy.png`` (E - E0 against the integrated work)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -122,6 +129,8 @@ def plot_hybrid(result, out_dir) -> list[pathlib.Path]:
     fig.savefig(p, dpi=110, bbox_inches="tight")
     plt.close(fig)
     paths.append(p)
+    if outputs is not None and outputs.channels:
+        paths.append(plot_loads(outputs, out / "loads.png", title or "hybrid model", result.events))
     s = result.solver
     fig, ax = plt.subplots(figsize=(8, 3.5))
     ax.plot(s.t, s.energy - s.energy[0], lw=1, label="E - E0")

@@ -66,13 +66,13 @@ def _label(physics, theory, order):
         "Euler-Bernoulli Hermite" if theory == "euler-bernoulli" else f"Timoshenko P{order}")
 
 
-@case("loads-end-moment", group="loads")
+@case("loads-fe-end-moment", group="loads")
 def end_moment():
     """Clamped-free stepped shaft (steel d 50 mm, 0.6 m; aluminium d 30 mm, 0.9 m) under an end torque,
     end force or end moment: torque, axial force and bending moment are uniform (shear zero) at every
     element end and inside the elements, for P1/P2 rods and every beam element.  Tolerance: rounding
     of the static solve (module notes)."""
-    name = "loads-end-moment"
+    name = "loads-fe-end-moment"
     out = []
     for physics, theory, order, dof, qty, value in (("torsion", "euler-bernoulli", 1, "theta", "torque", 250.0),
                                                     ("torsion", "euler-bernoulli", 2, "theta", "torque", 250.0),
@@ -96,12 +96,12 @@ def end_moment():
     return out
 
 
-@case("loads-cantilever-tip-force", group="loads")
+@case("loads-fe-cantilever-tip-force", group="loads")
 def cantilever_tip_force():
-    """Stepped cantilever (as loads-end-moment) with a tip force F = 1 kN: M(x) = F (L - x), V(x) = F at the
+    """Stepped cantilever (as loads-fe-end-moment) with a tip force F = 1 kN: M(x) = F (L - x), V(x) = F at the
     element ends and inside the elements; the clamp's reactions are -F and -F L.  Every beam element (the
     Timoshenko elements too: the determinate moment does not depend on shear flexibility)."""
-    name = "loads-cantilever-tip-force"
+    name = "loads-fe-cantilever-tip-force"
     F0, L = 1e3, 1.5
     out = []
     for physics, theory, order in THEORIES:
@@ -133,14 +133,14 @@ def _converge(name, quantity_name, expected_order, runs, h, finest_tol):
                   finest_tol, scale=1.0)]
 
 
-@case("loads-ss-beam-harmonic", group="loads")
+@case("loads-fe-ss-beam-harmonic", group="loads")
 def ss_beam_harmonic():
     """Simply supported steel beam (L = 1 m, d = 40 mm, Euler-Bernoulli Hermite elements) under a harmonic
     point force F = 100 N at x = 0.3 m, omega = 1.7 omega_1 (between the first two resonances, undamped):
     bending moment and shear force at x = 0.1, 0.3 (under the force), 0.5, 0.8 m against the exact
     dynamic-stiffness solution (E I w'''' = rho A omega^2 w on each side, matched at the force).  Order 4
     (module notes); finest mesh (80 elements) measured 1.2e-8."""
-    name = "loads-ss-beam-harmonic"
+    name = "loads-fe-ss-beam-harmonic"
     L, a, F0 = 1.0, 0.3, 100.0
     sec = Section.circle(0.04)
     EI, rhoA = STEEL.E * sec.I, STEEL.rho * sec.A
@@ -163,7 +163,7 @@ def ss_beam_harmonic():
             + _converge(name, "shear force (Hermite)", 4, errs["shear_force"], h, 2.5e-8))
 
 
-@case("loads-torsion-stepped-disc", group="loads")
+@case("loads-fe-torsion-stepped-disc", group="loads")
 def torsion_stepped_disc():
     """Stepped torsion shaft (steel d 50 mm, 0.6 m; aluminium d 30 mm, 0.9 m) clamped at x = 0 with a disc
     J = 0.01 kg m^2 at the step and a harmonic end torque T = 10 N m at omega = 4000 rad/s (between the first
@@ -171,7 +171,7 @@ def torsion_stepped_disc():
     -omega^2 J theta there), 1.05 and 1.5 m against the exact wave solution per segment.  P1 (order 2) and P2
     (order 4); static check: omega = 0 gives T = 10 N m everywhere to round-off.  Finest meshes measured:
     P1 (64 + 96 el.) 1.5e-5, P2 (32 + 48 el.) 6.3e-10."""
-    name = "loads-torsion-stepped-disc"
+    name = "loads-fe-torsion-stepped-disc"
     J_disc, T0, omega = 0.01, 10.0, 4000.0
     s1, s2 = Section.circle(0.05), Section.circle(0.03)
     segs = [(0.6, STEEL.G * s1.J, STEEL.rho * s1.Ip), (0.9, ALU.G * s2.J, ALU.rho * s2.Ip)]
@@ -203,14 +203,14 @@ def torsion_stepped_disc():
     return out
 
 
-@case("loads-timoshenko-cantilever", group="loads")
+@case("loads-fe-timoshenko-cantilever", group="loads")
 def timoshenko_cantilever():
     """Thick steel cantilever (L = 0.5 m, d = 0.1 m: L/d = 5, shear and rotary inertia matter) under a
     harmonic tip force F = 1 kN at omega = 5000 rad/s (between the first two resonances, 1779 and 9939 rad/s): bending moment and
     shear force at x = 0, 0.25, 0.4 m against the exact Timoshenko solution (Cowper's kappa).  P1 (order 2)
     and P2 (order 4) with reduced shear integration.  Finest meshes measured: P1 (64 el.) 1.6e-4, P2 (32 el.)
     1.8e-7."""
-    name = "loads-timoshenko-cantilever"
+    name = "loads-fe-timoshenko-cantilever"
     L, F0, omega = 0.5, 1e3, 5000.0
     sec = Section.circle(0.1)
     kappa = sec.shear_coefficient(STEEL.nu)
@@ -258,9 +258,9 @@ def _free_node_jumps(sl, attached_x) -> float:
     return worst
 
 
-@case("loads-equilibrium-fe", group="loads")
+@case("loads-fe-equilibrium", group="loads")
 def equilibrium_fe():
-    """Stepped shaft (loads-end-moment's) clamped at 0, on a spring support at 1.5 m (k = 1e5 N/m, k_r = 50 N m/rad),
+    """Stepped shaft (loads-fe-end-moment's) clamped at 0, on a spring support at 1.5 m (k = 1e5 N/m, k_r = 50 N m/rad),
     with a point mass (3 kg, 0.02 kg m^2) at 0.6 m, material psi = 0.2 in the first segment, Rayleigh damping
     (alpha = 2 1/s, beta = 1e-5 s) and a harmonic force (torque) of 200 at 1.05 m, omega = 900 rad/s; every beam
     element and torsion P1/P2.  Round-off checks: (1) the two elements at every free node agree; (2) at the point
@@ -271,7 +271,7 @@ def equilibrium_fe():
     sample, the tolerance there 1e-8 (the modes' own residuals, ~1e-11)."""
     from discrete.linear import Damping, modal_analysis
 
-    name = "loads-equilibrium-fe"
+    name = "loads-fe-equilibrium"
     omega, F0, alpha, beta = 900.0, 200.0, 2.0, 1e-5
     damping = Damping(type="rayleigh", alpha=alpha, beta=beta)
     out = []
@@ -348,7 +348,7 @@ def _balance(name, fe, q, F, R, acc, what, bending, tol=BALANCE):
     return checks
 
 
-@case("loads-equilibrium-rotor", group="loads")
+@case("loads-fe-rotor-equilibrium", group="loads")
 def equilibrium_rotor():
     """Unbalance responses of the shipped rotors (rotor_friswell_damped: discs, two bearings; rotor_compressor:
     discs, bearings on pedestals, a seal), at 5 speeds: the two elements at every node without a disc, bearing
@@ -360,7 +360,7 @@ def equilibrium_rotor():
     from fem.study import Study
     from validation.examples import EXAMPLES
 
-    name = "loads-equilibrium-rotor"
+    name = "loads-fe-rotor-equilibrium"
     out = []
     for file in ("rotor_friswell_damped.toml", "rotor_compressor.toml"):
         study = Study.load(EXAMPLES / file)
@@ -410,7 +410,7 @@ def equilibrium_rotor():
     return out
 
 
-@case("loads-rotor-gravity", group="loads")
+@case("loads-fe-rotor-gravity", group="loads")
 def rotor_gravity():
     """A uniform steel rotor (L = 1.2 m, d = 60 mm, Timoshenko elements, 12 of them) on rigid supports at both ends
     with a disc (30 kg) at 0.4 m, deflected by its weight (g = 9.81 m/s^2 along -z): the bending moment
@@ -421,7 +421,7 @@ def rotor_gravity():
     from fem.rotor import Disc, Rotor, ShaftSegment, Support as RotorSupport, assemble_rotor
     from fem.rotor import static_deflection as rotor_static
 
-    name = "loads-rotor-gravity"
+    name = "loads-fe-rotor-gravity"
     L, d, a, m, g = 1.2, 0.06, 0.4, 30.0, 9.81
     rotor = Rotor([ShaftSegment(L, 12, d, STEEL)], discs=[Disc(a, m, 0.1, 0.2)],
                   supports=[RotorSupport(0.0), RotorSupport(L)])
