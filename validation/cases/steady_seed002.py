@@ -228,6 +228,11 @@ def seed002_time_sweeps():
     truncation ~3e-5, settling 1e-9).  The difference is HB-15's truncation error: with the strand's kink
     integrated exactly (issue 27) it measures that error alone -- 1.02e-5 / 3.13e-5 at a = 4.7e-4 / 8.6e-4,
     where the sampled kink's own error (1024 samples) used to cancel part of it (1.00e-5 / 2.97e-5 before).
+    This is not a loss of accuracy: HB-15 with the kink integrated exactly is the limit of the sampled HB-15
+    as the samples grow (16384 samples agree with it to 1e-8 at every point of the branch), and the
+    1024-sample values scatter by 1-2e-6 on either side of it (a = 8.6e-4: 2.90e-5 vs 3.01e-5 at z = 0.62,
+    but 1.63e-5 vs 1.43e-5 at z = 0.78, 1.60e-5 vs 1.37e-5 at z = 0.74; errors against the HB controlled to
+    an estimate of 5e-9, H = 400) -- the maximum fell on a point where the aliasing happened to subtract.
     So (a') every HB-15 difference is at most its a-posteriori truncation estimate plus the sweep point's
     own error (its difference from the controlled HB of (a''), plus 1e-9, the settling tolerance: on the
     linear, always-taut stretches the estimate is 0 and both differences ~1e-10 are the sweep's and the
