@@ -229,8 +229,8 @@ def impact_checks() -> list:
     out.append(claim(f"{name} 1-DOF", SRC_1DOF_IMPACT, "the 1-DOF curve (370 .. 420 rad/s) completes with two folds",
                      bool(r1.completed) and len(r1.folds) == 2, note=r1.reason))
     om = impact_omitted(st, mode, ja, jt, sm1, hb1, r1.states[k1], float(r1.omega[k1]), ks, F0)
-    wp, Fp, _ = parabola_top(r.omega, r.response)
-    wp1, Fp1, _ = parabola_top(r1.omega, r1.response)
+    wp, Fp = r.peak()              # the maxima located along the branches (AFCResult.peak)
+    wp1, Fp1 = r1.peak()
     note = (f"higher modes: {1 - mode.share:.2%} of the static flexibility at the stop; contact frequency "
             f"{om['wc']:.0f} rad/s (omega_2 = {st.modal(2).omega_rad_s[1]:.0f}); first-order share in the "
             f"contact eps = {om['eps']:.3f} (static part k_s f_h = {om['static']:.3f})")
@@ -288,7 +288,9 @@ def hybrid_afc_vibro_impact():
     relative to the penetration (R_h: exact damped receptance minus mode 1's; the sum of magnitudes is
     the worst phase alignment) -- for the peak force, and its effect on the bilinear frequency
     2 w_o w_c/(w_o + w_c), eps_w = eps/2 k_s/(k1 + k_s) w_o/(w_o + w_c), for the peak and fold
-    frequencies.  Mode 1 carries 99.0 % of the static flexibility at the stop, but the stop is 3.9 times
+    frequencies.  The peaks compared are the maxima located along each branch (AFCResult.peak), not a
+    parabola through the three largest points (which moved with the point spacing of the condensed
+    continuation).  Mode 1 carries 99.0 % of the static flexibility at the stop, but the stop is 3.9 times
     stiffer than the beam there: the contact frequency sqrt((k1 + k_s)/m1) ~ 2.2 omega_1 and the 5th
     contact-force harmonic near omega_2 bring eps to ~8 % (measured error 6.6 %): the 1-DOF estimate
     is at the edge of its validity here (slow case hybrid_afc_breakdown: 0.3 % for k_s = 2e4 N/m,
@@ -379,7 +381,9 @@ def rod_checks() -> list:
     out.append(claim(f"{name} (a) summary", SRC_SIM, "HB-15 (tanh 1e-4 m/s) vs simulation, worst difference",
                      worst_hb < 0.015, note=f"HB-15 {worst_hb:.2%}, Richardson {worst_rich:.2%}"))
     # the peak of the curve against the Den Hartog peak
-    wp, Ap, curv = parabola_top(r.omega, r.response * scale)
+    _, _, curv = parabola_top(r.omega, r.response * scale)
+    wp, Ap = r.peak()              # the maximum located along the branch (AFCResult.peak)
+    Ap *= scale
     opt = minimize_scalar(lambda w: -den_hartog_damped(mode.m1, mode.k1, mode.c1, F, P0, w),
                           bounds=(0.97 * mode.omega1, 1.03 * mode.omega1), method="bounded",
                           options={"xatol": 1e-6 * mode.omega1})
@@ -534,8 +538,8 @@ def impact_1dof_row(ks: float, harmonics: int, sdof_range) -> dict:
     k1 = int(np.argmax(r1.response))
     om = impact_omitted(st, mode, ja, jt, sm1, hb1, r1.states[k1], float(r1.omega[k1]), ks,
                         doc["force"][0]["amplitude"])
-    wp, Fp, _ = parabola_top(r.omega, r.response)
-    wp1, Fp1, _ = parabola_top(r1.omega, r1.response)
+    wp, Fp = r.peak()              # the maxima located along the branches (AFCResult.peak)
+    wp1, Fp1 = r1.peak()
     return {"ks": ks, "ratio": ks / (mode.k1 * mode.share), "fe": (wp, Fp), "sdof": (wp1, Fp1), "completed":
             bool(r.completed and r1.completed), **om}
 

@@ -5,7 +5,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import SWEPT, Count, Integer, Positive, Table, rule
+from .base import SWEPT, Count, Integer, Number, Positive, Table, rule
 
 
 class ResponseMeasure(Table):
@@ -81,7 +81,7 @@ class Steady(Table):
     kinks: Literal["exact", "sampled"] = "exact"
     """HB: piecewise-linear laws (gaps, stops, one-sided springs) integrated "exact"ly between their
     crossings, or "sampled" at the AFT samples (the kink then makes the branch zig-zag near resonance)."""
-    truncation_tol: Annotated[float, Field(gt=0, lt=1)] = 1e-3
+    truncation_tol: Number(gt=0, lt=1)["1"] = 1e-3
     """HB: tolerance of the relative truncation estimate of every point and of the frequency change of
     every fold and bifurcation with more harmonics (docs/steady.md); the run says where it is exceeded."""
     adaptive: bool = False
