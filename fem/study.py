@@ -486,6 +486,10 @@ class Study:
         sm = SteadyModel(spec, steady_settings(self.doc.steady))
         if sm.cfg.method == "hb":
             budget.check_hb(sm.system.n, sm.cfg.harmonics)
+            if sm.cfg.adaptive:
+                budget.check_hb(sm.system.n, sm.cfg.max_harmonics or 4 * sm.cfg.harmonics, key="max_harmonics")
+            if sm.cfg.switch_branches:          # a period-doubled branch has twice the harmonics
+                budget.check_hb(sm.system.n, 2 * sm.cfg.harmonics, key="switch_branches")
         if sm.cfg.start == "time":        # the start integrates start_periods response periods (DOP853)
             w0 = float(sm.cfg.range[0])
             t_start = sm.cfg.start_periods * 2 * math.pi * sm.cfg.subharmonic / w0

@@ -135,7 +135,7 @@ def forced(args) -> int:
             folder.mkdir(parents=True, exist_ok=True)
         main = one or folder / ("afc.png" if steady else "frf.png")
         if steady:
-            plot_afc(res, main, title=study.title)
+            plot_afc(res, main, title=study.title or None)
             print(f"wrote {main}")
         else:
             print(f"wrote {plot_frf(res, main, study.title)}")
