@@ -5,11 +5,12 @@ PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+DOCS_STAMP := $(VENV)/.installed-docs
 export PYVISTA_OFF_SCREEN := true
 export VTK_DEFAULT_OPENGL_WINDOW := vtkOSOpenGLRenderWindow
 export MPLBACKEND := Agg
 
-.PHONY: demo test test-slow validate bench fuzz system-deps clean
+.PHONY: demo test test-slow docs validate bench fuzz system-deps clean
 
 system-deps:
 	@if ldconfig -p 2>/dev/null | grep -q libOSMesa; then :; \
@@ -35,6 +36,15 @@ test: system-deps $(STAMP)
 test-slow: system-deps $(STAMP)
 	$(BIN)/python -m pytest -q -m slow -n auto
 
+# The documentation site (mkdocs-material + mkdocstrings, the `docs` extra) into ./site/;
+# --strict: a broken link, a missing page or an API name that does not import is an error.
+$(DOCS_STAMP): $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[docs]'
+	touch $(DOCS_STAMP)
+
+docs: $(DOCS_STAMP)
+	NO_MKDOCS_2_WARNING=1 $(BIN)/mkdocs build --strict
+
 validate: system-deps $(STAMP)
 	$(BIN)/drivefem validate --report validation-report
 
@@ -45,4 +55,4 @@ fuzz: $(STAMP)
 	$(BIN)/python -m tests.fuzzing.run --n 3000 --out fuzz-report
 
 clean:
-	rm -rf $(VENV) drivefem-demo validation-report fuzz-report .pytest_cache build *.egg-info
+	rm -rf $(VENV) site drivefem-demo validation-report fuzz-report .pytest_cache build *.egg-info

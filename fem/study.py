@@ -7,7 +7,10 @@ the sweeps and the validation catalogue go through (design.md §9).
 Kinds: ``fe`` (linear analyses of a shaft), ``lumped`` and ``hybrid`` (linear analyses, time
 simulation by the event-driven, Moreau-Jean or regularised integrator, nonlinear steady states),
 ``drive`` (a drive of regular structure by three representations), ``rotor`` (complex modes at a
-speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.rotor`).
+speed, Campbell diagram with critical speeds, unbalance response: :mod:`fem.rotor`), ``train`` (geared
+multi-shaft trains: complex modes, Campbell diagram, forced response over speed, time simulation with
+exact backlash and slip events, nonlinear steady states, Floquet chart of the mesh stiffness:
+:mod:`fem.train`, docs/geared.md).
 """
 from __future__ import annotations
 
@@ -34,6 +37,7 @@ build_hybrid = lazy_module("fem.modelfile.build.hybrid")
 build_linear = lazy_module("fem.modelfile.build.linear")
 build_lumped = lazy_module("fem.modelfile.build.lumped")
 build_rotor = lazy_module("fem.modelfile.build.rotor")
+build_train = lazy_module("fem.modelfile.build.train")
 
 
 def steady_settings(table):
@@ -136,16 +140,31 @@ class Study:
         self._need("rotor", what="a rotor")
         return assemble_rotor(build_rotor.rotor_model(self.doc))
 
+    @cached_property
+    def train(self):
+        """The assembled train (:class:`fem.train.TrainSystem`) of a train file."""
+        from .train import assemble_train
+
+        self._need("train", what="a geared train")
+        return assemble_train(build_train.train_model(self.doc))
+
     def campbell(self, n_modes: int | None = None, progress=None):
-        """Rotor files: the Campbell diagram of [campbell] with its critical speeds
+        """Rotor and train files: the Campbell diagram of [campbell] with its critical speeds
         (``progress(done, total)`` after each solve: :func:`fem.rotor.campbell`)."""
         from .rotor import campbell
 
-        self._need("rotor", what="drivefem campbell")
+        self._need("rotor", "train", what="drivefem campbell")
         t = self.doc.campbell
         if t is None:
-            raise ModelError("model file (rotor)", "campbell", None, "a table [campbell] with speeds = [..] or "
-                             "speeds_rpm = { start, stop, points } (required for drivefem campbell)")
+            raise ModelError(f"model file ({self.kind})", "campbell", None, "a table [campbell] with speeds = [..] "
+                             "or speeds_rpm = { start, stop, points } (required for drivefem campbell)")
+        if self.kind == "train":
+            from .train import train_campbell
+
+            tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+            return train_campbell(self.train, build_train.speeds(t, "[campbell]"),
+                                  build_train.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
+                                  critical=t.critical, tolerance=tol, progress=progress)
         speeds = build_rotor.speed_grid(t, "[campbell]")
         tol = self.analysis.tolerance if self.analysis is not None else 1e-6
         return campbell(self.rotor, speeds, build_rotor.modes_count(self.doc, t, n_modes), orders=tuple(t.orders),
@@ -161,16 +180,36 @@ class Study:
             return self.compiled.system
         if self.kind == "rotor":            # M q'' + (C + Omega G) q' + K q = f at the [analysis] speed
             return self.rotor.system_at(build_rotor.modal_speed(self.doc))
+        if self.kind == "train":            # the meshes in their linear state, at the [analysis] speed
+            return self.train.system_at(build_train.modal_speed(self.doc))
         raise ModelError("model file (drive)", "drive", "...", "the drive analyses (modal, forced, compare)")
 
     @cached_property
     def _lumped_system(self):
         return self.lumped.linear_system()
 
+    def compiled_train(self, eliminate_rigid: bool = False):
+        """The train's nonsmooth problem at [train] speed (:func:`fem.train.compile.compile_train`): Craig-Bampton
+        per shaft by [reduction], [[driver]] motions, [[force]] loads; ``eliminate_rigid`` for steady states."""
+        from .train.compile import compile_train
+
+        self._need("train", what="a train's nonsmooth problem")
+        key = ("_compiled_train", bool(eliminate_rigid))
+        if key not in self.__dict__:
+            ts = self.train
+            self.__dict__[key] = compile_train(ts, build_train.operating_speed(self.doc),
+                                               reduction=build_train.reduction(self.doc),
+                                               drivers=build_train.drivers(ts, self.doc),
+                                               loads=build_train.loads(ts, self.doc), eliminate_rigid=eliminate_rigid,
+                                               start=self.doc.train.start)
+        return self.__dict__[key]
+
     def problem_spec(self, t_end: float | None = None, refuse: bool = True):
-        """The nonsmooth problem without its forcing frequency fixed (lumped and hybrid)."""
+        """The nonsmooth problem without its forcing frequency fixed (lumped, hybrid, train)."""
         if self.kind == "lumped":
             return build_lumped.problem_spec(self.doc, t_end, refuse)
+        if self.kind == "train":            # steady states: the free rigid-body motion eliminated
+            return self.compiled_train(eliminate_rigid=True).spec()
         self._need("hybrid", what="a nonsmooth problem")
         return self.compiled.spec()
 
@@ -236,6 +275,12 @@ class Study:
             tol = self.analysis.tolerance if self.analysis is not None else 1e-6
             return rotor_modes(self.rotor, build_rotor.modal_speed(self.doc),
                                build_rotor.modes_count(self.doc, None, n_modes), tolerance=tol)
+        if self.kind == "train":
+            from .train import train_modes
+
+            tol = self.analysis.tolerance if self.analysis is not None else 1e-6
+            return train_modes(self.train, build_train.modal_speed(self.doc),
+                               build_train.modes_count(self.doc, None, n_modes), tolerance=tol)
         from discrete.linear import modal_analysis
 
         an = self.analysis
@@ -281,6 +326,16 @@ class Study:
                     res.extra["backbone"] = afc_backbone(sm, res).to_dict()
                 self._steady = (res, sm)
                 return res
+        if self.kind == "train":
+            from .train.forced import train_forced
+
+            t = self.doc.forced
+            if t is None:
+                raise ModelError("model file (train)", "forced", None, "a table [forced] with speeds = .. (the linear "
+                                 "response over speed) or [steady] (the nonlinear curve) for drivefem forced")
+            ts = self.train
+            return train_forced(ts, build_train.speeds(t, "[forced]"), build_train.loads(ts, self.doc),
+                                samples=t.samples)
         if self.kind == "rotor":
             from .rotor import unbalance_response
 
@@ -373,6 +428,22 @@ class Study:
         settings.setdefault("max_evaluations", budget.numeric_evaluations())
         t_end, method = settings["t_end"], settings["method"]
         spp = settings.get("steps_per_period", 12)
+        if self.kind == "train":
+            from discrete.nonsmooth import simulate_spec
+
+            from .train.simulate import TrainSimulation
+
+            comp = self.compiled_train()
+            spec = comp.spec()
+            problem = spec.problem() if method != "moreau" else None
+            if problem is not None:
+                budget.check_time_integration(t_end, problem.omega_max, spp, method)
+            if not comp.elements and not comp.forces and not comp.drivers and not np.any(comp.v0) \
+                    and not np.any(comp.x0):
+                raise ModelError("model file", "force", None, "a [[force]], [[driver]], an initial state or a "
+                                 "nonlinear connection (backlash, slip torque, stiffness variation) for a simulation")
+            res = simulate_spec(spec, t_end, method, settings, problem=problem)
+            return TrainSimulation(result=res, compiled=comp, warnings=list(comp.warnings))
         if self.kind == "hybrid":
             from .hybrid import run
 
@@ -419,6 +490,10 @@ class Study:
         sm = SteadyModel(spec, steady_settings(self.doc.steady))
         if sm.cfg.method == "hb":
             budget.check_hb(sm.system.n, sm.cfg.harmonics)
+            if sm.cfg.adaptive:
+                budget.check_hb(sm.system.n, sm.cfg.max_harmonics or 4 * sm.cfg.harmonics, key="max_harmonics")
+            if sm.cfg.switch_branches:          # a period-doubled branch has twice the harmonics
+                budget.check_hb(sm.system.n, 2 * sm.cfg.harmonics, key="switch_branches")
         if sm.cfg.start == "time":        # the start integrates start_periods response periods (DOP853)
             w0 = float(sm.cfg.range[0])
             t_start = sm.cfg.start_periods * 2 * math.pi * sm.cfg.subharmonic / w0

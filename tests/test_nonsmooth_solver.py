@@ -127,6 +127,25 @@ def test_event_limit_stops_with_message():
     assert res.to_dict()["stopped_early"] is True
 
 
+def test_recorder_keeps_both_sides_of_every_event_and_reports_progress():
+    """The kernel records the state reaching an event, the next piece's call the state leaving it (a
+    pending sample, flushed on a stop): every event time appears twice, reaching and leaving states
+    as the event's, and the progress callback (throttled) is told the final time."""
+    doc, d = seed000_doc(6.0, 1.0, periods=5.0)
+    seen = []
+    res = Study.parse(doc).simulate(progress=seen.append)
+    assert len(res.events) > 10 and not res.stopped_early
+    k = res.names.index("disk")
+    for ev in res.events:
+        at = np.flatnonzero(res.t == ev.t)
+        assert at.size >= 2, (ev.kind, ev.t, at)        # (3 where a zero-length piece follows)
+        assert any(res.x[k, j] == ev.state["disk"]["x"] and res.v[k, j] == ev.state["disk"]["v"] for j in at)
+    assert seen[-1] == res.t[-1] and seen == sorted(seen) and len(seen) < res.t.size / 50
+    doc["simulation"]["max_events"] = 7                       # the stop: the last event's leaving state kept
+    res = Study.parse(doc).simulate()
+    assert res.stopped_early and res.t[-1] == res.events[-1].t and np.sum(res.t == res.events[-1].t) >= 2
+
+
 def test_impact_between_bodies_momentum_and_restitution():
     """Two free bodies colliding: momentum conserved, relative velocity reversed times e."""
     doc = {"body": [{"name": "a", "inertia": 1.0, "v0": 1.0}, {"name": "b", "inertia": 3.0, "x0": 1.0}],

@@ -1,4 +1,4 @@
-"""The output contract (README "CLI and JSON"): every command's JSON says what it is, modal and
+"""The output contract (docs/cli.md, docs/outputs.md): every command's JSON says what it is, modal and
 forced give one documented shape for every kind of model, complex numbers are {re, im}, and no
 number is ever NaN or infinite (a result that became non-finite is exit 4, naming its place)."""
 import json

@@ -137,7 +137,9 @@ def test_batched_floquet_equals_plain_product():
         ref = _floquet_reference(hb, X, w, 256)
         assert np.max(np.abs(np.sort_complex(mu) - ref)) < 1e-12
         assert np.max(np.abs(np.sort_complex(floquet_hb(hb, X, w, steps=256)) - ref)) < 1e-12
-    hb3 = HBModel(steady_model(chain()).system, harmonics=5)  # three DOFs: deduplicated Pade path
+    # three DOFs: deduplicated Pade path (sampled kinks: the plain uniform midpoint rule; with exactly
+    # integrated kinks the intervals are cut at the crossings, tests/test_steady_piecewise.py)
+    hb3 = HBModel(steady_model(chain()).system, harmonics=5, kinks="sampled")
     X = hb3.solve(hb3.linear_guess(1.1), 1.1)[0]
     mu = floquet_hb_batch(hb3, [X, X], [1.1, 1.1], steps=128)
     ref = _floquet_reference(hb3, X, 1.1, 128)

@@ -321,15 +321,17 @@ def _step_events(R, T, ng, h, hh, z, gd0, gd1, first, W, have_W, c, cand_tau, ca
 
 
 @njit(cache=True)
-def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, out_t, out_z, out_W, z, hits):
+def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, out_t, out_z, out_W, n0, z, hits,
+            start):
     """March the piece from (t, z0) step by step, recording the step ends (and the output
-    instants k dt_out inside the steps when dt_out > 0) in out_*, until the first event, t_end
-    or a full buffer.  ``work`` accumulates the work of each power category.  On return ``z`` holds
-    the event's state (or the last step end) and ``hits`` which guards fire within round-off of the
-    event instant.
+    instants k dt_out inside the steps when dt_out > 0) in out_* from row ``n0`` on, until the first
+    event (recorded too: the state reaching it), t_end or a full buffer; with ``start``, the state
+    (t, z0) is recorded first (the state leaving the event before the piece).  ``work`` accumulates
+    the work of each power category.  On return ``z`` holds the event's state (or the last step end)
+    and ``hits`` which guards fire within round-off of the event instant.
 
-    Returns (why, samples written, steps, t, W_total) with t the event's instant (or the last step
-    end)."""
+    Returns (why, n, steps, t, W_total): the samples are rows n0 .. n - 1; t the event's instant (or
+    the last step end)."""
     nz = z0.size
     nparts = Q.shape[0]
     z[:] = z0
@@ -341,8 +343,13 @@ def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, ou
     cand_tau = np.empty(ng)
     cand_z = np.empty((ng, nz))
     w = np.empty(nparts)
-    n, steps = 0, 0
+    n, steps = n0, 0
     cap = out_t.size
+    if start:
+        out_t[n] = t
+        out_z[n, :] = z0
+        out_W[n] = W_total
+        n += 1
     while True:
         hh = min(h, t_end - t)
         if hh <= 0.0:
@@ -397,6 +404,10 @@ def advance(P, R, T, G, Q, ng, h, z0, t, t_end, first, dt_out, W_total, work, ou
             for j in range(ng):
                 hits[j] = cand_tau[j] <= tev + tol
             z[:] = cand_z[jev]
+            out_t[n] = t + tev            # the state reaching the event, recorded too
+            out_z[n, :] = z
+            out_W[n] = W_total
+            n += 1
             return EVENT, n, steps, t + tev, W_total
         s = 0.0
         if hh == h:

@@ -15,8 +15,10 @@ step).  Roots are refined by safeguarded Newton on the exact expression to ~1e-1
 """
 from __future__ import annotations
 
+import gc
 import math
 
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -77,7 +79,6 @@ class EventDrivenSolver:
         self._projections: dict = {}        # (element, velocity?) -> (row, direction) of _project
         self._t_end = np.inf
         self._event_states: list = []       # (event, state vector): the events' DOF states, filled in at the end
-        self._buffers = None                # output buffers of the exact pieces (reused)
 
     def _contact_force_tolerances(self) -> dict:
         """Round-off tolerance of each persistent contact's force.  When an elastic body lands
@@ -116,7 +117,7 @@ class EventDrivenSolver:
         if pc is None and self.p.mode_affine(mode) and np.isfinite(self._t_end):
             pc = self._piece(mode, self._t_end - t)
         if pc is not None:
-            return (pc.Fm @ z).tolist(), pc.rows
+            return pc.Fm.dot(z).tolist(), pc.rows          # (ndarray.dot: matmul's value at half its call cost)
         out = self._eval(t, z, mode)
         return out["F"][:, 0].tolist(), out["rows"]
 
@@ -152,7 +153,7 @@ class EventDrivenSolver:
             if p.time_invariant:
                 self._projections[key] = rd
         r, d = rd
-        out = d * (target - r @ z)
+        out = d * (target - r.dot(z))
         out += z
         return out
 
@@ -175,15 +176,17 @@ class EventDrivenSolver:
 
     def _consistent_mode(self, t, z, mode, limits=None):
         """Release sticking frictions (|lam| above their limit) and persistent contacts (lam < 0),
-        the most violated first, until the constraint forces are admissible."""
+        the most violated first, until the constraint forces are admissible.  Returns a new list
+        of the modes (``mode`` itself is left as it was)."""
         mode = list(mode)
         limits = limits or {}
-        elements, ftol = self.p.elements, self._contact_ftol
+        pieces, elements, ftol = self._pieces, self.p.elements, self._contact_ftol
         for _ in range(4 * len(mode) + 4):
-            pc = self._pieces.get(tuple(mode))
+            key = tuple(mode)
+            pc = pieces.get(key)
             if pc is not None and not pc.rows:  # no constraint in this mode: nothing (more) to release
                 return mode
-            F, rows = self._forces(t, z, mode)
+            F, rows = self._forces(t, z, key)
             worst, wi = 0.0, None
             for i in rows:
                 excess = elements[i].constraint_excess(F[i], t, limits.get(i), ftol.get(i, 0.0))
@@ -217,31 +220,41 @@ class EventDrivenSolver:
         return pc
 
     def _propagate_exact(self, t, z, mode, t_end, rec, acc):
-        pc = self._piece(mode, t_end - t)
+        """March the exact piece of ``mode`` from (t, z) to its first event or t_end; the kernel writes
+        the step ends (and the output instants) straight into the recorder's arrays."""
+        pc = self._pieces.get(mode)
+        if pc is None:
+            pc = self._piece(mode, t_end - t)
         dt_out = float(self.o.output_step or 0.0)
-        buf = self._buffers
-        if buf is None or buf[1].shape[1] != pc.nz or (dt_out and buf[0].size < 2 * pc.h / dt_out + 16):
-            cap = 4096 if not dt_out else max(4096, int(2 * pc.h / dt_out) + 16)
-            buf = self._buffers = (np.empty(cap), np.empty((cap, pc.nz)), np.empty(cap))
-        out_t, out_z, out_W = buf
-        first = True
+        room = 4096 if not dt_out else max(4096, int(2 * pc.h / dt_out) + 16)    # rows free before a call
         energy = self.o.energy
         hits = pc.hits
         kernel = _kernel()
+        advance, EVENT, END = kernel.advance, kernel.EVENT, kernel.END
+        P, R, T, G, Q, ng, h, nz, work = pc.P, pc.R, pc.T, pc.G, pc.Q, pc.ng, pc.h, pc.nz, pc.work_total
+        first = True
         while True:
-            z_out = np.empty(pc.nz)
-            why, n, steps, t, W = kernel.advance(
-                pc.P, pc.R, pc.T, pc.G, pc.Q, pc.ng, pc.h, z, t, t_end, first, dt_out,
-                acc["W"], pc.work_total, out_t, out_z, out_W, z_out, hits)
+            n0 = rec.n
+            if n0 + room > rec.t.size:
+                rec.grow(room)
+            z_out = np.empty(nz)
+            start = rec.pending is not None        # the state leaving the last event: the kernel records it
+            why, n, steps, t, W = advance(P, R, T, G, Q, ng, h, z, t, t_end, first, dt_out, acc["W"], work,
+                                          rec.t, rec.Z, rec.W, n0, z_out, hits, start)
+            if start:
+                rec.pending = None
             z = z_out
             acc["steps"] += steps
+            if n > n0:
+                if not energy:
+                    rec.W[n0:n] = acc["W"]
+                rec.filled(n, mode)
             if energy:
                 acc["W"] = W
-            if n:
-                rec.extend(out_t[:n], out_z[:n], mode, out_W[:n] if energy else np.full(n, acc["W"]))
-            if why == kernel.EVENT:
-                return t, z, [pc.tags[j] for j in range(pc.ng) if hits[j]]
-            if why == kernel.END:
+            if why == EVENT:
+                tags = pc.tags
+                return t, z, [tags[j] for j, hit in enumerate(hits.tolist()) if hit]
+            if why == END:
                 return t, z, []
             first = False
 
@@ -372,7 +385,9 @@ class EventDrivenSolver:
             trig = [tags[h[0]] for h in hits if h[1] <= te + tol]
             y = [h[2] for h in hits if h[1] == te][0]
             settle(y)
-            return te, np.concatenate([y[:nqv], exo(te)]), trig
+            ze = np.concatenate([y[:nqv], exo(te)])
+            rec(te, ze, mode, acc["W"])            # the state reaching the event
+            return te, ze, trig
         yk = sol.y[:, -1]
         return sol.t[-1], np.concatenate([yk[:nqv], exo(sol.t[-1])]), []
 
@@ -383,11 +398,12 @@ class EventDrivenSolver:
         p = self.p
         elements = p.elements
         nel = p.n_el
-        trig = trig if len(trig) == 1 else sorted(set(trig))
-        knots = [i - nel for i, _ in trig if i >= nel]
+        if len(trig) != 1:
+            trig = sorted(set(trig))           # (the knots of programme laws, i >= nel, come last)
         modes = list(mode)
         jumps, knot_events = {}, []
-        if knots:
+        if trig[-1][0] >= nel:
+            knots = [i - nel for i, _ in trig if i >= nel]
             E0 = self._energy(t, z, modes)
             moved = False
             for k in knots:
@@ -419,13 +435,14 @@ class EventDrivenSolver:
                 if mode[i] != before[i] and i not in recorded:
                     records.append([i, el.release_event()])
         events = knot_events
-        impulses = dict(ctx.impulses)
+        impulses = ctx.impulses
+        event_states = self._event_states
         for i, kind in records:
             if kind == "stop":
                 kind = "stick" if mode[i] == 0 else "reversal"
             ev = Event(t, kind, elements[i].name, {}, float(impulses.pop(i, 0.0)))
             events.append(ev)
-            self._event_states.append((ev, z))
+            event_states.append((ev, z))
         if ctx.jump:
             jumps["impacts"] = ctx.jump
         return z, tuple(mode), events, jumps
@@ -439,8 +456,9 @@ class EventDrivenSolver:
         """Simulate on [t0, t_end].  The linear algebra here is on tiny matrices (the pieces'
         expansions, projections, the energy): BLAS threads only add synchronisation, and their
         spinning costs several times the work on a busy machine (seed 000, 801 events: 21 ms of
-        CPU single-threaded against 50-110 ms with two OpenBLAS threads)."""
-        with single_threaded_blas():
+        CPU single-threaded against 50-110 ms with two OpenBLAS threads).  Python's cyclic garbage
+        collector is paused meanwhile (:func:`_collector_paused`)."""
+        with single_threaded_blas(), _collector_paused():
             return self._run(t_end, t0)
 
     def _run(self, t_end: float, t0: float = 0.0) -> SimulationResult:
@@ -462,34 +480,38 @@ class EventDrivenSolver:
         zero_len = 0
         n_pieces = 0
         stopped, reason = False, ""
+        mode_affine, exact, numeric, apply = p.mode_affine, self._propagate_exact, self._propagate_numeric, self._apply
+        max_zero_length, max_events = o.max_zero_length, o.max_events
         try:
             while t < t_end:
                 n_pieces += 1
-                if p.mode_affine(mode):
-                    te, ze, trig = self._propagate_exact(t, z, mode, t_end, rec, acc)
+                if mode_affine(mode):
+                    te, ze, trig = exact(t, z, mode, t_end, rec, acc)
                 else:
-                    te, ze, trig = self._propagate_numeric(t, z, mode, t_end, rec, acc)
+                    rec.flush()
+                    te, ze, trig = numeric(t, z, mode, t_end, rec, acc)
                 if not trig:
                     t, z = te, ze
                     if rec.last_t != t:
                         rec(t, z, mode, acc["W"])
                     break
                 zero_len = zero_len + 1 if te == t else 0
-                if zero_len > o.max_zero_length:
+                if zero_len > max_zero_length:
+                    rec.drop_last()            # the state reaching the event (the event is not applied)
                     stopped, reason = True, (f"no progress at t = {te!r}: {zero_len} consecutive events "
                                              f"({', '.join(f'{p.actor_name(i)}:{g}' for i, g in trig)}) "
                                              "without time advancing (chattering or accumulation)")
                     t, z = te, ze
                     break
-                rec(te, ze, mode, acc["W"])
-                z, mode, evs, jumps = self._apply(te, ze, mode, trig, impact_ref)
-                for part, jump in jumps.items():
-                    acc["W"] += jump
-                    acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
+                z, mode, evs, jumps = apply(te, ze, mode, trig, impact_ref)
+                if jumps:
+                    for part, jump in jumps.items():
+                        acc["W"] += jump
+                        acc["Wp"][part] = acc["Wp"].get(part, 0.0) + jump
                 t = te
-                rec(t, z, mode, acc["W"])
-                events.extend(evs)
-                if len(events) >= o.max_events:
+                rec.pending = (t, z, mode, acc["W"])     # recorded by the next piece's kernel (or flush)
+                events += evs
+                if len(events) >= max_events:
                     stopped, reason = True, (f"event limit max_events = {o.max_events} reached at t = {t!r} "
                                              f"(last event: {evs[-1].kind if evs else '-'} of "
                                              f"{evs[-1].element if evs else '-'}); results up to there are kept")
@@ -498,6 +520,7 @@ class EventDrivenSolver:
             stopped, reason = True, f"solver stopped at t = {t!r}: {exc}"
         except KeyboardInterrupt:
             stopped, reason = True, "interrupted (Ctrl-C): the results up to there are kept"
+        rec.flush()
         return self._result(rec, events, t_end, n_pieces, acc, stopped, reason)
 
     def _result(self, rec, events, t_end, n_pieces, acc, stopped, reason):
@@ -559,6 +582,22 @@ class EventDrivenSolver:
         return res
 
 
+@contextmanager
+def _collector_paused():
+    """Python's cyclic garbage collector paused (then restored as it was).  The event loop makes
+    a few long-lived objects per event (the event, its record) and no reference cycles; every time
+    such objects grow by a quarter, the collector walks every object of the process (the model, the
+    loaded modules: ~150 000 objects behind a ``drivefem simulate``).  Seed 000, 16 000 events:
+    those walks took 0.2-0.3 s, more than the events' own work (measured with ``gc.callbacks``)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
 _KERNEL = []
 
 
@@ -572,64 +611,101 @@ def _kernel():
 
 
 class _Recorder:
-    """The recorded instants, states, mode ids and accumulated work, in growing arrays (doubled when
-    full): single samples (an instant at an event) and blocks (copied from the kernel's buffers).
-    The sample count ``n`` is advanced last, so a Ctrl-C halfway through a record leaves the
-    arrays consistent."""
+    """The recorded instants, states and accumulated work, in growing arrays (doubled when full):
+    single samples (an instant at an event) and blocks (written by the kernel straight into the
+    arrays, then counted by :meth:`filled`); the mode of the samples as runs (the sample where each
+    mode starts).  The sample count ``n`` is advanced last, so a Ctrl-C halfway through a record
+    leaves the arrays consistent.  The progress callback is told the time reached every
+    ``PROGRESS_SAMPLES`` samples (a bar needs no more: a call per event cost ~5% of a run of short
+    pieces) and at the end (:meth:`arrays`)."""
+
+    PROGRESS_SAMPLES = 256
 
     def __init__(self, t0, z0, mode, progress):
         cap = 1024
         self.t, self.W = np.empty(cap), np.empty(cap)
         self.Z = np.empty((cap, z0.size))
-        self.which = np.empty(cap, dtype=np.int64)
         self.ids: dict = {}
+        self._mode, self._mode_id = None, -1          # the mode of the last sample and its id
+        self._starts, self._run_ids = [], []          # the first sample of each run of one mode, its id
         self.n = 0
         self.progress = progress
+        self._report_at = 0 if progress is not None else math.inf     # sample count of the next report
+        self.pending = None        # (t, z, mode, W) of a sample to record before the next ones
         self(t0, z0, mode, 0.0)
 
-    def _room(self, k: int) -> None:
+    def grow(self, k: int) -> None:
+        """Room for at least ``k`` more samples."""
         need = self.n + k
         if need > self.t.size:
             cap = max(2 * self.t.size, need)
-            for name in ("t", "W", "Z", "which"):
+            for name in ("t", "W", "Z"):
                 old = getattr(self, name)
                 new = np.empty((cap,) + old.shape[1:], dtype=old.dtype)
                 new[:self.n] = old[:self.n]
                 setattr(self, name, new)
 
-    def _id(self, mode) -> int:
+    def _switch(self, mode) -> None:
+        """The samples from ``n`` on are in ``mode``."""
         i = self.ids.get(mode)
         if i is None:
             i = self.ids[mode] = len(self.ids)
-        return i
+        if i != self._mode_id:
+            self._starts.append(self.n)
+            self._run_ids.append(i)
+        self._mode, self._mode_id = mode, i
 
     @property
     def last_t(self) -> float:
         return float(self.t[self.n - 1])
 
+    def _report(self, n: int, t) -> None:
+        self._report_at = n + self.PROGRESS_SAMPLES
+        self.progress(t)
+
     def __call__(self, t, z, mode, W) -> None:
+        if mode is not self._mode:
+            self._switch(mode)
         n = self.n
         if n == self.t.size:
-            self._room(1)
-        self.t[n], self.W[n], self.Z[n], self.which[n] = t, W, z, self._id(mode)
+            self.grow(1)
+        self.t[n] = t
+        self.W[n] = W
+        self.Z[n] = z
         self.n = n + 1
-        if self.progress is not None:
-            self.progress(t)
+        if n >= self._report_at:
+            self._report(n, t)
 
-    def extend(self, times, Z, mode, W) -> None:
-        k = times.size
-        self._room(k)
+    def filled(self, n: int, mode) -> None:
+        """Count the samples self.n .. n - 1 the kernel wrote into the arrays (all in ``mode``)."""
+        if mode is not self._mode:
+            self._switch(mode)
+        self.n = n
+        if n >= self._report_at:
+            self._report(n, float(self.t[n - 1]))
+
+    def flush(self) -> None:
+        """Record the pending sample (if any)."""
+        if self.pending is not None:
+            sample, self.pending = self.pending, None
+            self(*sample)
+
+    def drop_last(self) -> None:
+        """Forget the last sample."""
+        self.n -= 1
+
+    def which(self) -> np.ndarray:
+        """The mode id of every sample."""
         n = self.n
-        self.t[n:n + k], self.W[n:n + k], self.Z[n:n + k] = times, W, Z
-        self.which[n:n + k] = self._id(mode)
-        self.n = n + k
-        if self.progress is not None:
-            self.progress(float(times[-1]))
+        starts = np.minimum(np.array(self._starts + [n], dtype=np.int64), n)
+        return np.repeat(np.array(self._run_ids, dtype=np.int64), np.diff(starts))
 
     def arrays(self):
         """(t, Z with one row per sample, the distinct modes, the index of each sample's mode, W)."""
         n = self.n
-        return self.t[:n].copy(), self.Z[:n], list(self.ids), self.which[:n].copy(), self.W[:n].copy()
+        if self.progress is not None:
+            self.progress(float(self.t[n - 1]))
+        return self.t[:n].copy(), self.Z[:n], list(self.ids), self.which(), self.W[:n].copy()
 
 
 def simulate(problem: Problem, t_end: float, options: Options | None = None, t0: float = 0.0) -> SimulationResult:
@@ -678,8 +754,8 @@ class EventContext:
     def velocity(self) -> float:
         """s' of the element."""
         p = self.solver.p
-        q, v, e = self.solver._split(self.z)
-        return p.gf[self.i] @ v + p.gve[self.i] @ e
+        z, i, nf = self.z, self.i, p.nf
+        return p.gf[i].dot(z[nf:2 * nf]) + p.gve[i].dot(z[2 * nf + p.nw:])
 
     def energy(self) -> float:
         q, v, e = self.solver._split(self.z)
@@ -697,9 +773,11 @@ class EventContext:
     def project_velocity(self, target: float) -> None:
         """Set s' to ``target`` (the kinetic-energy-minimal velocity jump); the generalised impulse along
         s this takes, m_eff (target - s'), is recorded with the element's event (Event.impulse)."""
-        jump = (target - self.velocity()) * self.solver._effective_mass(self.t, self.i)
-        self.impulses[self.i] = self.impulses.get(self.i, 0.0) + jump
-        self.z = self.solver._project_velocity(self.t, self.z, self.i, target)
+        solver, i, t = self.solver, self.i, self.t
+        jump = (target - self.velocity()) * solver._effective_mass(t, i)
+        impulses = self.impulses
+        impulses[i] = impulses.get(i, 0.0) + jump
+        self.z = solver._project(t, self.z, i, target, True)
 
     def project_position(self, target: float) -> None:
         self.z = self.solver._project_position(self.t, self.z, self.i, target)

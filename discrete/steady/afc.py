@@ -14,9 +14,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelError, SolverError
-from .condense import arclength_scale, condensed_model
+from . import bifurcation as bif
+from . import measures
 from .continuation import arclength, refine_fold
-from .hb import HBModel, floquet_hb_batch, time_guess
+from .hb import HBModel, time_guess
 from .shooting import ShootingModel, section_phase
 from .system import PeriodicSystem
 
@@ -46,6 +47,12 @@ class SteadySettings:
     start: str = "linear"                    # HB start: "linear" guess, or "time": integrated from x0/v0
     start_periods: int = 100                 # "time": forcing periods (x subharmonic) integrated first
     condense: str = "auto"                   # HB on the nonlinear DOFs by exact condensation: auto|yes|no (condense.py)
+    kinks: str = "exact"                     # HB: piecewise-affine laws integrated "exact"ly or "sampled" (AFT)
+    truncation_tol: float = 1e-3             # HB: tolerance of the relative truncation estimate
+    adaptive: bool = False                   # HB: raise the harmonics where the estimate exceeds the tolerance
+    max_harmonics: int | None = None         # HB, adaptive: at most this many harmonics (default 4 harmonics)
+    bifurcations: bool = True                # classify and locate folds, branch points, PD, NS
+    switch_branches: bool = False            # HB: follow the period-doubled branches and those of branch points
 
 
 @dataclass
@@ -70,6 +77,15 @@ class AFCResult:
     stop_cause: str = ""                  # "end" | "left_range" | "ds_min" | "max_steps" (continuation.Branch.stop)
     states: list = field(default_factory=list, repr=False)   # solver unknowns per point (HB coefficients
     #                                                          or shooting initial state), not in to_dict
+    multipliers: list = field(default_factory=list, repr=False)   # all Floquet multipliers per point (or None)
+    bifurcations: list = field(default_factory=list)      # bifurcation.Bifurcation, in branch order
+    truncation: np.ndarray | None = None                  # HB: relative truncation estimate per point
+    truncation_tol: float | None = None
+    harmonics: np.ndarray | None = None                   # HB: harmonics per point (adaptive)
+    secondary: list = field(default_factory=list)         # AFCResults of switched branches
+    warnings: list = field(default_factory=list)
+    origin: str = ""                                      # a secondary branch: where it was born
+    peak_point: tuple | None = None                       # HB: the maximum located along the branch
 
     @property
     def z(self):
@@ -103,10 +119,52 @@ class AFCResult:
         return out
 
     def peak(self):
+        """(omega, response) of the largest response: the located maximum along the branch (HB) if there
+        is one, else the largest point."""
+        if self.peak_point is not None:
+            return self.peak_point
         i = int(np.nanargmax(self.response))
         return float(self.omega[i]), float(self.response[i])
 
+    def truncation_ok(self) -> bool | None:
+        """Whether every point's truncation estimate is within the tolerance (None: not estimated)."""
+        if self.truncation is None or self.truncation_tol is None or not self.truncation.size:
+            return None
+        return bool(np.all(self.truncation <= self.truncation_tol))
+
+    def truncation_line(self) -> str:
+        """One sentence on the truncation estimate (empty without one)."""
+        ok = self.truncation_ok()
+        if ok is None:
+            return ""
+        e = self.truncation
+        i = int(np.argmax(e))
+        Hs = "" if self.harmonics is None else (f", harmonics {int(self.harmonics.min())}..{int(self.harmonics.max())}"
+                                                if self.harmonics.min() != self.harmonics.max() else "")
+        if ok:
+            return (f"truncation estimate: max {e[i]:.2g} at omega = {self.omega[i]:.6g} rad/s, within the tolerance "
+                    f"{self.truncation_tol:g}{Hs}")
+        above = int(np.sum(e > self.truncation_tol))
+        return (f"truncation estimate ABOVE the tolerance {self.truncation_tol:g} at {above} of {e.size} points (max "
+                f"{e[i]:.2g} at omega = {self.omega[i]:.6g} rad/s){Hs}: raise harmonics or set adaptive = true")
+
     def to_dict(self) -> dict:
+        d = self._dict()
+        if self.method.startswith("hb"):
+            d["truncation_estimate"] = None if self.truncation is None else [float(x) for x in self.truncation]
+            d["truncation_tolerance"] = self.truncation_tol
+            d["truncation_ok"] = self.truncation_ok()
+            if self.harmonics is not None:
+                d["harmonics"] = [int(h) for h in self.harmonics]
+        d["bifurcations"] = [b.to_dict() for b in self.bifurcations]
+        if self.secondary or self.origin:
+            d["secondary_branches"] = [b.to_dict() for b in self.secondary]
+        if self.origin:
+            d["origin"] = self.origin
+        d["warnings"] = list(self.warnings) + list(d.get("warnings", []))
+        return d
+
+    def _dict(self) -> dict:
         return {"method": self.method, "response_label": self.response_label,
                 "omega_rad_s": [float(x) for x in self.omega],
                 "z": None if self.omega_ref is None else [float(x) for x in self.z],
@@ -132,10 +190,24 @@ class AFCResult:
             mm = self.max_multiplier[i]
             r += f"{self.response[i]:14.6g} {('yes' if self.stable[i] else 'NO'):>6} {mm if np.isfinite(mm) else float('nan'):9.4f}"
             rows.append(r)
-        for f in self.folds:
-            rows.append(f"fold at omega = {f['omega']:.6g} rad/s, response = {f['response']:.6g}")
+        if self.bifurcations:
+            for b in self.bifurcations:
+                rows.append(b.line(self.omega_ref))
+        else:
+            for f in self.folds:
+                rows.append(f"fold at omega = {f['omega']:.6g} rad/s, response = {f['response']:.6g}")
+        line = self.truncation_line()
+        if line:
+            rows.append(line)
+        for w in self.warnings:
+            rows.append(f"warning: {w}")
         if self.reason:
             rows.append(f"branch end: {self.reason}")
+        for b in self.secondary:
+            rows.append(f"secondary {b.origin}: {b.omega.size} points, omega {b.omega.min():.6g} .. "
+                        f"{b.omega.max():.6g} rad/s, {b.reason}")
+            for c in b.bifurcations:
+                rows.append("  " + c.line(self.omega_ref))
         return "\n".join(rows)
 
 
@@ -179,8 +251,9 @@ class SteadyModel:
     def factory(self, omega):
         return self.spec.problem(omega)
 
-    def measure(self, t, q, v, omega):
-        """Response measure from a periodic time series of the free DOFs."""
+    def measure(self, t, q, v, omega, events=None):
+        """Response measure from a periodic time series of the free DOFs (:mod:`.measures`; ``events``:
+        the instants where the law switches -- an extreme there is not refined by a parabola)."""
         if self.resp_el is not None:
             F, _ = self.system.element_series(t, q, v, omega)
             y = np.abs(F[self.resp_el])
@@ -189,40 +262,15 @@ class SteadyModel:
         m = self.cfg.measure
         if m == "h1":
             T = 2 * np.pi / omega * self.cfg.subharmonic
-            tt = np.asarray(t) - t[0]
-            sel = tt <= T * (1 + 1e-12)
-            tt, yy = tt[sel], y[sel]
-            a = 2 / T * np.trapezoid(yy * np.cos(omega * tt), tt)
-            b = 2 / T * np.trapezoid(yy * np.sin(omega * tt), tt)
-            return float(np.hypot(a, b) / self.cfg.scale)
-        val = {"amplitude": 0.5 * (np.max(y) - np.min(y)), "max": np.max(y), "min": np.min(y),
-               "peak": np.max(np.abs(y))}[m]
-        return float(val / self.cfg.scale)
+            return measures.series_h1_time(t, y, omega, T) / self.cfg.scale
+        ymax, ymin = measures.refined_sample_extremes(t, y, events)
+        return float(measures.from_extremes(m, ymax, ymin) / self.cfg.scale)
 
-    def measure_hb(self, hb, states, omegas, points: int | None = None) -> list:
-        """:meth:`measure` of HB orbits (coefficients ``states``) sampled at ``points`` (default
-        max(512, N)) instants -- all orbits at once (the ``h1`` measure one by one)."""
-        P = points or max(512, hb.N)
-        if not len(states):
-            return []
-        if self.cfg.measure == "h1":
-            return [self.measure(*hb.evaluate(x, w, points=P), w) for x, w in zip(states, omegas)]
-        s = self.system
-        Q = np.asarray(states, float).reshape(-1, s.n, hb.m)
-        w = np.asarray(omegas, float)[:, None]
-        G, DG = hb.basis(P)
-        if self.resp_el is not None:
-            e = self.resp_el
-            g = hb.grid(P)
-            A = s.Gf[e] @ Q                                   # (orbits, 2H+1)
-            S = A @ G + g.sa[e] + g.sb[e] / w
-            Sd = (w / hb.nu) * (A @ DG) + g.sda[e] + w * g.sdb[e]
-            y = np.abs(s.elements[e].smooth_force(S, Sd, s.eps)[0])
-        else:
-            y = Q[:, self.resp_dof] @ G
-        val = {"amplitude": lambda: 0.5 * (np.max(y, axis=1) - np.min(y, axis=1)), "max": lambda: np.max(y, axis=1),
-               "min": lambda: np.min(y, axis=1), "peak": lambda: np.max(np.abs(y), axis=1)}[self.cfg.measure]()
-        return [float(x) for x in val / self.cfg.scale]
+    def measure_hb(self, hb, states, omegas) -> list:
+        """The response measure of HB orbits (coefficients ``states``), exactly (:mod:`.measures`)."""
+        from .hb_curve import measure_orbits
+
+        return [float(x) for x in measure_orbits(self, hb, states, omegas)]
 
 
 
@@ -240,46 +288,73 @@ def _record_stability(mu, max_multiplier: list, critical: list, stable: list) ->
     stable.append(max_multiplier[-1] < 1 + 1e-6)
 
 def _hb_curve(sm: SteadyModel, progress=None) -> AFCResult:
+    """The HB curve (:mod:`.hb_curve`): segments of the continuation, per-point stability, measures and
+    truncation estimates, folds checked at more harmonics, bifurcations, switched branches."""
+    from . import hb_curve
+
     cfg = sm.cfg
-    hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
+    models = hb_curve.Models(sm)
+    hb = models.get(cfg.harmonics)
     w0, w1 = cfg.range
-    # hook (condense.py): the continuation runs on the exactly condensed HB equations of the nonlinear DOFs
-    # when [steady] condense says so; its states are expanded to the full coefficients (to_full)
-    cond, cond_why = condensed_model(sm.system, hb, cfg.condense)
-    solver = hb if cond is None else cond
-    to_full = (lambda x, w: x) if cond is None else cond.expand
-    X0 = _hb_start(sm, hb, w0) if cond is None else cond.start(w0, lambda: _hb_start(sm, hb, w0))
-    xs = np.full(X0.size, max(np.max(np.abs(X0)), 1e-12)) if cond is None else arclength_scale(cond, X0, w0)
+    # hook (condense.py): with [steady] condense the Newton work of the curve (continuation, folds, peak) runs on
+    # the exactly condensed HB equations of the nonlinear DOFs (hb_curve.Models.solver); states stay full
+    X0 = models.start(w0, lambda: _hb_start(sm, hb, w0))
+    scale = max(float(np.max(np.abs(X0))), 1e-12)
+    segs = hb_curve.continue_branch(sm, models, hb, X0, w0, w1, scale, progress)
+    res = _hb_result(sm, models, segs, scale, cfg.bifurcations)
+    if cfg.switch_branches and cfg.stability:
+        cd_primary = res.extra.pop("_data")
+        reached = set()
+        for b in list(res.bifurcations):
+            if b.kind not in ("branch_point", "period_doubling") or not b.located or id(b) in reached:
+                continue
+            segs2, what, arrived = hb_curve.switch(sm, models, cd_primary, b, scale)
+            if segs2 is None:
+                res.warnings.append(f"branch switching: {what}")
+                continue
+            if arrived is not None:          # the branch came back to the primary at another bifurcation
+                reached.add(id(arrived))
+                what += f", back on the primary branch at omega = {arrived.omega:.8g} rad/s"
+            sec = _hb_result(sm, models, segs2, scale, cfg.bifurcations)
+            sec.extra.pop("_data", None)
+            sec.origin = what
+            res.secondary.append(sec)
+    else:
+        res.extra.pop("_data", None)
+    return res
 
-    def fun(x, w, need_w=True):
-        return solver.evaluate_residual(x, w, jac=True, dw=need_w)
 
-    br = arclength(fun, X0, w0, w1, xscale=xs, wscale=abs(w1 - w0), ds=cfg.ds, ds_max=cfg.ds_max,
-                   ds_min=cfg.ds_min, max_steps=cfg.max_steps, start_converged=True, callback=_report(progress))
-    om, stab, mm, states, crit = [], [], [], [], []
-    xfull = [to_full(x, w) for x, w in zip(br.x, br.w)]
-    mus = floquet_hb_batch(hb, xfull, br.w) if cfg.stability and br.x else [None] * len(br.x)
-    resp = sm.measure_hb(hb, xfull, br.w)
-    for x, w, mu in zip(xfull, br.w, mus):           # all inside the range: a crossing is landed on the bound
-        states.append(x)
-        om.append(w)
+def _hb_result(sm: SteadyModel, models, segs, scale, locate: bool) -> AFCResult:
+    from . import hb_curve
+
+    cfg = sm.cfg
+    cd = hb_curve.analyse(sm, models, segs, scale, stability=cfg.stability, locate=locate)
+    om, stab, mm, crit = [], [], [], []
+    for mu in cd.mus:
         _record_stability(mu, mm, crit, stab)
-    folds = []
-    for i, wf, fr in br.folds:
-        try:
-            xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs, br.tangent_w[i] > 0)
-        except (SolverError, np.linalg.LinAlgError):
-            xf, wf = _refine_fold(br, i, wf, fr)
-        t, q, v = hb.evaluate(to_full(xf, wf), wf, points=max(512, hb.N))
-        folds.append({"omega": wf, "response": sm.measure(t, q, v, wf)})
-    return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
-                     max_multiplier=np.array(mm), folds=folds, method=f"hb (H = {hb.H}, N = {hb.N}, AFT)",
-                     response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=br.reason,
-                     completed=br.completed, stopped_at=br.stopped_at, stop_cause=br.stop,
-                     stability_computed=cfg.stability, extra={"steps_rejected": br.steps_rejected,
-                                                              "condensation": cond_why if cond else None},
-                     states=states,
-                     critical=np.array(crit))
+    br = segs[-1].br
+    Hs = np.array([m.H for m in cd.models], int)
+    Ns = sorted({m.N for m in cd.models})
+    Hlabel = f"H = {Hs.min()}" if Hs.min() == Hs.max() else f"H = {Hs.min()}..{Hs.max()} (adaptive)"
+    nu = segs[0].hb.nu
+    method = (f"hb ({Hlabel}, N = {'/'.join(str(n) for n in Ns)}, "
+              f"{'AFT, kinks integrated exactly' if segs[0].hb.exact_elements else 'AFT'}"
+              f"{f', subharmonic {nu}' if nu != cfg.subharmonic else ''})")
+    reason = br.reason
+    bifs = [b for b in cd.bifurcations if locate or b.kind == "fold"]
+    res = AFCResult(omega=np.array(cd.omega), response=np.array(cd.response), stable=np.array(stab, bool),
+                    max_multiplier=np.array(mm), folds=cd.folds, method=method, response_label=sm.resp_label,
+                    omega_ref=cfg.omega_ref, reason=reason, completed=br.completed, stopped_at=br.stopped_at,
+                    stop_cause=br.stop, stability_computed=cfg.stability,
+                    extra={"steps_rejected": sum(s.br.steps_rejected for s in segs), "_data": cd,
+                           "condensation": models.condensation},
+                    states=cd.states, critical=np.array(crit), multipliers=cd.mus, bifurcations=bifs,
+                    truncation=np.array(cd.estimate), truncation_tol=cfg.truncation_tol,
+                    harmonics=Hs if (cfg.adaptive or Hs.min() != Hs.max()) else None, warnings=list(cd.warnings),
+                    peak_point=cd.peak)
+    if res.truncation_ok() is False:
+        res.warnings.append(res.truncation_line())
+    return res
 
 
 def _hb_start(sm: SteadyModel, hb: HBModel, w0: float):
@@ -328,6 +403,7 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
     wscale = abs(w1 - w0)
     segments = _shooting_segments(sh, y, cfg, sc, wscale, progress)
     om, resp, stab, mm, states, crit, phases, folds = [], [], [], [], [], [], [], []
+    mus, bifs = [], []
     for k, (br, phase, fun, sc) in enumerate(segments):
         first = 0 if k == 0 else 1         # a resumed segment starts at the previous one's last orbit
         for x, w in zip(br.x[first:], br.w[first:]):   # all inside the range: a crossing is landed on the bound
@@ -335,13 +411,19 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
             states.append(x)
             phases.append(phase)
             om.append(w)
-            _record_stability(sh.floquet(x, w, sc, phase) if cfg.stability else None, mm, crit, stab)
+            mu = sh.floquet(x, w, sc, phase) if cfg.stability else None
+            mus.append(mu)
+            _record_stability(mu, mm, crit, stab)
         for i, wf, fr in br.folds:
+            located = True
             try:
                 xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc, br.tangent_w[i] > 0)
             except (SolverError, np.linalg.LinAlgError):
                 xf, wf = _refine_fold(br, i, wf, fr)
+                located = False
             folds.append({"omega": wf, "response": _shoot_measure(sm, sh, xf, wf, phase)})
+            bifs.append(bif.Bifurcation("fold", float(wf), folds[-1]["response"], None,
+                                        "tangent d omega / ds (bounded search)", located, -1))
     br = segments[-1][0]
     reason = br.reason
     moves = [s[0].w[0] for s0, s in zip(segments, segments[1:]) if s[1] != s0[1]]
@@ -351,6 +433,8 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
     transitions = [t for s in segments for t in s[0].transitions]
     if transitions:
         reason += "; stepped over: " + "; ".join(t[2] for t in transitions)
+    if cfg.bifurcations and cfg.stability:
+        bifs += _interpolated_bifurcations(sm, sh, om, states, mus, phases, [f["omega"] for f in folds])
     return AFCResult(omega=np.array(om), response=np.array(resp), stable=np.array(stab, bool),
                      max_multiplier=np.array(mm), folds=folds, method="shooting (event-driven, FD monodromy)",
                      response_label=sm.resp_label, omega_ref=cfg.omega_ref, reason=reason,
@@ -360,7 +444,30 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
                             "section_changes": len(moves),
                             "transitions": [{"omega_before": a, "omega_after": b, "what": d} for a, b, d in transitions],
                             "section_phase_rad": [float(p) for p in phases]}, states=states,
-                     critical=np.array(crit))
+                     critical=np.array(crit), multipliers=mus, bifurcations=sorted(bifs, key=lambda b: b.omega))
+
+
+def _interpolated_bifurcations(sm, sh, om, states, mus, phases, fold_omegas):
+    """Period doublings, Neimark-Sacker points and branch points of a shooting branch: the test functions
+    of the multipliers (bifurcation.detect) interpolated linearly between the branch points (each orbit
+    costs period maps; not located)."""
+    out = []
+    folds = {i for i in range(len(om) - 1) for wf in fold_omegas if min(om[i], om[i + 1]) <= wf <= max(om[i], om[i + 1])}
+    f = {"branch_point": bif.psi_plus, "period_doubling": bif.psi_pd, "neimark_sacker": bif.psi_ns}
+    for i, kind, test in bif.detect(mus, None, folds):
+        if phases[i] != phases[i + 1]:
+            continue
+        fa, fb = f[kind](mus[i]), f[kind](mus[i + 1])
+        sig = fa / (fa - fb) if fa != fb else 0.5
+        w = om[i] + sig * (om[i + 1] - om[i])
+        x = states[i] + sig * (states[i + 1] - states[i])
+        mu = bif.critical(mus[i] + sig * (mus[i + 1] - mus[i]), kind) if mus[i].shape == mus[i + 1].shape else None
+        try:
+            r = _shoot_measure(sm, sh, x, w, phases[i])
+        except SolverError:
+            r = float("nan")
+        out.append(bif.Bifurcation(kind, float(w), r, mu, test, False, i))
+    return out
 
 
 def _shooting_segments(sh: ShootingModel, y, cfg: SteadySettings, sc, wscale, progress, max_changes: int = 200):
@@ -508,7 +615,7 @@ def _refine_fold(br, i, wf, fr):
 def _shoot_measure(sm, sh, y, w, phase=0.0):
     _, res = sh.run(y, w, dense=True, phase=phase)
     p = sh.problem(w)
-    return sm.measure(res.t, res.x[p.f], res.v[p.f], w)
+    return sm.measure(res.t, res.x[p.f], res.v[p.f], w, events=[e.t for e in res.events])
 
 
 def _report(progress):

@@ -122,7 +122,10 @@ class CondensedHB:
         self.H, self.nu, self.m, self.N = full.H, full.nu, full.m, full.N
         self.c = coupling_dofs(s)
         self.l = np.setdiff1d(np.arange(s.n), self.c)
-        self.inner = HBModel(CouplingSystem(s, self.c), harmonics=full.H, nu=full.nu, samples=full.N)
+        # the element part exactly as the full model evaluates it: the same grids (N, and N_fine for rough
+        # laws) and the same kinks option (piecewise-affine laws integrated exactly over their crossings)
+        self.inner = HBModel(CouplingSystem(s, self.c), harmonics=full.H, nu=full.nu, samples=full.samples,
+                             kinks=full.kinks)
         H = self.H
         self.k = np.arange(H + 1)
         M, C, K = (np.asarray(a, float) for a in (s.M, s.C, s.K))
@@ -302,14 +305,14 @@ def condensed_model(system, hb: HBModel, mode: str = "auto"):
     return (CondensedHB(hb) if ok else None), why
 
 
-def arclength_scale(cond: CondensedHB, X0, omega) -> np.ndarray:
+def arclength_scale(cond: CondensedHB, X0, omega, xs: float | None = None) -> np.ndarray:
     """Per-unknown scales of the condensed continuation that measure its arc length as the full HB
     continuation does (to first order, at the start frequency): the full continuation scales every
     coefficient by the largest full coefficient ``xs``; a condensed coefficient j moves the full state by
     ``E[:, j]`` (E = d expand / d X_c: the identity on c, ``-Z_ll^-1 Z_lc`` on l), so its scale is
-    ``xs / |E[:, j]|``."""
-    Xf = cond.expand(X0, omega)
-    xs = max(np.max(np.abs(Xf)), 1e-12)
+    ``xs / |E[:, j]|`` (``xs``: given, or the largest coefficient of the expanded X0)."""
+    if xs is None:
+        xs = max(np.max(np.abs(cond.expand(X0, omega))), 1e-12)
     nc, m = cond.c.size, cond.m
     op = cond.operator(omega)
     w = np.ones((nc, m))

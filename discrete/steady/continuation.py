@@ -36,6 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.linalg import lu_factor, lu_solve
 
 from ..errors import SolverError
 
@@ -54,6 +55,9 @@ class Branch:
     #                                                    | "transition" | "stop_if" (only with those options)
     w_end: float = float("nan")                        # the end of the range that was asked for
     transitions: list = field(default_factory=list)    # (w before, w after, description): stepped-over grazings
+    tangents: list = field(default_factory=list)       # the oriented scaled tangent [x / xscale, w / wscale] per point
+    bp_sign: list = field(default_factory=list)        # sign of det [Jx Jw; t] per point (branch-point test)
+    last_step: float = float("nan")                    # the arc-length step after the last point
 
     @property
     def stopped_at(self) -> float:
@@ -105,7 +109,8 @@ def _land(fun, xa, wa, xb, wb, wt, xs, tol, maxit, h):
 
 def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_max=0.1, max_steps=2000,
               tol=1e-9, maxit=12, w_bounds=None, start_converged=False, callback=None, orientation=None,
-              transition=None, stop_at_transition=False, stop_if=None) -> Branch:
+              transition=None, stop_at_transition=False, stop_if=None, reuse_jacobian=False,
+              early_stop=False) -> Branch:
     """Follow the branch from (x0, w0) (corrected at fixed w0 first) towards ``w_stop``; it ends exactly
     at ``w_stop`` (landed, ``completed``) or says where and why it stopped (module docstring).
     ``orientation``: a direction in the scaled variables ``[x / xscale, w / wscale]`` that the first
@@ -113,7 +118,11 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     ``transition``: the hook of the module docstring (or None).  ``stop_at_transition``: end the branch
     (``stop = "transition"``) at the point after a stepped-over transition, and ``stop_if(x, w) -> bool``:
     end it (``stop = "stop_if"``) after an accepted point for which it holds -- the caller resumes the
-    branch, e.g. with the variables rescaled to the new orbit."""
+    branch, e.g. with the variables rescaled to the new orbit.  ``reuse_jacobian``: the tangent at a new
+    point from the corrector's last bordered matrix (one evaluation less per point; the Jacobian is
+    taken one Newton step before convergence, i.e. within the tolerance of the point).  ``early_stop``:
+    the corrector stops when quadratic convergence predicts its next step far below the tolerance (one
+    evaluation less per point; the point is then accurate to ~tol^2/|step| instead of to rounding)."""
     xs = np.asarray(xscale, float)
     direction = 1.0 if w_stop >= w0 else -1.0
     lo, hi = w_bounds if w_bounds is not None else (min(w0, w_stop), max(w0, w_stop))
@@ -134,20 +143,15 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         A[:n, :n] = Jx * xs[None, :]
         A[:n, n] = Jw * wscale
         A[n] = prev
-        rhs = np.zeros(n + 1)
-        rhs[n] = 1.0
-        try:
-            t = np.linalg.solve(A, rhs)
-        except np.linalg.LinAlgError:
-            t = np.linalg.lstsq(A, rhs, rcond=None)[0]
-        t /= np.linalg.norm(t)
-        if t @ prev < 0:
-            t = -t
-        return t
+        return tangent_from(A, prev)
 
     def corrector(up, tau):
+        """Newton on R = 0 and tau . (u - up) = 0; returns (u, iterations, the last bordered matrix): its
+        last row is tau, so the tangent at the new point is its solution for e_n (the Jacobian one
+        iteration before convergence, where the step was already below the tolerance)."""
         uu = up.copy()
         ww = uu[n] * wscale
+        last = np.inf
         for it in range(1, maxit + 1):
             xx, ww = uu[:n] * xs, uu[n] * wscale
             R, Jx, Jw = fun(xx, ww)
@@ -160,9 +164,33 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             uu = uu + du
             if not np.all(np.isfinite(uu)):
                 raise _StepFailure(f"the corrector diverged near omega = {ww:.6g}")
-            if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(uu))):
-                return uu, it
+            big = np.max(np.abs(du))
+            lim = tol * max(1.0, np.max(np.abs(uu)))
+            # converged: this step below the tolerance, or (early_stop) quadratic convergence predicting the
+            # next one far below it (|du_k| <= 0.1 |du_k-1| and |du_k|^2 / |du_k-1| <= tol / 10)
+            if big <= lim or (early_stop and it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
+                return uu, it, A
+            last = big
         raise _StepFailure(f"the corrector did not converge in {maxit} iterations near omega = {ww:.6g}")
+
+    def tangent_from(A, prev):
+        """The tangent from a bordered matrix [Jx Jw; prev] (the corrector's or a fresh one), oriented
+        along prev; the sign of det A (= sign det [Jx Jw; t], t . prev > 0) is kept in ``sign[0]``: it
+        changes at a branch point, not at a fold."""
+        rhs = np.zeros(n + 1)
+        rhs[n] = 1.0
+        try:
+            lu, piv = lu_factor(A, check_finite=False)
+            t = lu_solve((lu, piv), rhs, check_finite=False)
+            d = np.diag(lu)
+            sign[0] = float(np.prod(np.sign(d)) * (-1.0) ** int(np.sum(piv != np.arange(n + 1))))
+            if not np.all(np.isfinite(t)) or np.any(d == 0):
+                raise np.linalg.LinAlgError("singular")
+        except (np.linalg.LinAlgError, ValueError):
+            t = np.linalg.lstsq(A, rhs, rcond=None)[0]
+            sign[0] = 0.0
+        t /= np.linalg.norm(t)
+        return -t if t @ prev < 0 else t
 
     def crossed(wn):
         """The range bound at or beyond which ``wn`` lies (None inside)."""
@@ -176,10 +204,13 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     prev[n] = direction
     if orientation is not None:
         prev = np.asarray(orientation, float) / np.linalg.norm(orientation)
+    sign = [0.0]
     tau = tangent(x, w, prev)
     br.x.append(x.copy())
     br.w.append(w)
     br.tangent_w.append(tau[n])
+    br.tangents.append(tau.copy())
+    br.bp_sign.append(sign[0])
     br.iterations.append(its)
     if callback:
         callback(x, w)
@@ -193,14 +224,18 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             turned = None          # the largest step rejected only for its tangent turn: (xn, wn, tn, it, landed, h)
             while h >= ds_min:
                 try:
-                    uu, it = corrector(u + h * tau, tau)
+                    uu, it, Ab = corrector(u + h * tau, tau)
                     xn, wn = uu[:n] * xs, uu[n] * wscale
                     landed = crossed(wn)
                     if landed is not None:     # at or beyond a bound: land on it at the fixed frequency
                         xn, it_land = _land(fun, x, w, xn, wn, landed, xs, tol, maxit, h)
                         wn = float(landed)
                         it = max(it, it_land)
-                    tn = tangent(xn, wn, tau)
+                        tn = tangent(xn, wn, tau)
+                    elif reuse_jacobian:
+                        tn = tangent_from(Ab, tau)
+                    else:
+                        tn = tangent(xn, wn, tau)
                     if tn @ tau <= 0.8:
                         if turned is None and transition is not None:
                             turned = (xn, wn, tn, it, landed, h)
@@ -231,6 +266,8 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             br.x.append(x.copy())
             br.w.append(w)
             br.tangent_w.append(tau[n])
+            br.tangents.append(tau.copy())
+            br.bp_sign.append(sign[0])
             br.iterations.append(it)
             if callback:
                 callback(x, w)
@@ -238,6 +275,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
                 h = min(1.5 * h, ds_max)
             elif it >= 7:
                 h = max(0.6 * h, ds_min)
+            br.last_step = h
             if stop_if is not None and landed is None and stop_if(x, w):
                 br.stop = "stop_if"
                 br.reason = f"stopped at omega = {w:.10g} on request (stop_if)"
@@ -261,12 +299,92 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             br.reason = (f"stopped at omega = {w:.10g} (range end {w_end:.10g} not reached): max_steps = {max_steps} "
                          f"reached")
     except KeyboardInterrupt:
-        m = min(len(br.x), len(br.w), len(br.tangent_w), len(br.iterations))
-        del br.x[m:], br.w[m:], br.tangent_w[m:], br.iterations[m:]
+        m = min(len(br.x), len(br.w), len(br.tangent_w), len(br.iterations), len(br.tangents), len(br.bp_sign))
+        del br.x[m:], br.w[m:], br.tangent_w[m:], br.iterations[m:], br.tangents[m:], br.bp_sign[m:]
         br.stop = "interrupted"
         br.reason = (f"interrupted (Ctrl-C) at omega = {br.w[-1]:.10g} (range end {w_end:.10g} not reached): the "
                      "points computed are kept")
     return br
+
+
+def locate_fold(fun, x0, w0, t0, xscale, wscale, tol=1e-12, maxit=12):
+    """A fold (limit point in omega) by Newton on the minimally extended system (Govaerts, *Numerical
+    methods for bifurcations of dynamical equilibria*, SIAM 2000, §3.2): R(x, w) = 0 and g(x, w) = 0,
+    where g solves the bordered system ``[Jx b; c^T 0] [v; g] = [0; 1]`` (b, c: the left and right null
+    vectors of the last iterate; g = 0 iff Jx is singular).  Its gradient ``-w^T (d Jx) v`` needs second
+    derivatives; by the symmetry of R_xx it is the directional difference of one more evaluation,
+    ``g_x = -(w^T Jx(x + e v) - w^T Jx(x)) / e`` and ``g_w = -(w^T Jw(x + e v) - w^T Jw(x)) / e``, so
+    an iteration costs two evaluations and converges quadratically from the branch points next to the
+    fold.  Variables scaled by (xscale, wscale); ``t0``: the scaled tangent near the fold (x part: the
+    first right null vector).  Returns (x, w, iterations); SolverError if it does not converge."""
+    xs = np.asarray(xscale, float)
+    n = xs.size
+    x, w = np.array(x0, float), float(w0)
+    c = np.asarray(t0, float)[:n].copy()
+    c /= max(np.linalg.norm(c), 1e-300)
+    b = c.copy()
+    last = np.inf
+    for it in range(1, maxit + 1):
+        R, Jx, Jw = fun(x, w)
+        Js = Jx * xs[None, :]
+        Jws = Jw * wscale
+        Bd = np.zeros((n + 1, n + 1))
+        Bd[:n, :n] = Js
+        Bd[:n, n] = b
+        Bd[n, :n] = c
+        e = np.zeros(n + 1)
+        e[n] = 1.0
+        vg = np.linalg.solve(Bd, e)
+        wg = np.linalg.solve(Bd.T, e)
+        v, g = vg[:n], vg[n]
+        wl = wg[:n]
+        eps = 1e-7 * max(1.0, np.linalg.norm(x / xs)) / max(np.linalg.norm(v), 1e-300)
+        _, Jx2, Jw2 = fun(x + eps * v * xs, w)
+        gx = -(wl @ (Jx2 * xs[None, :]) - wl @ Js) / eps
+        gw = -(wl @ (Jw2 * wscale) - wl @ Jws) / eps
+        A = np.zeros((n + 1, n + 1))
+        A[:n, :n] = Js
+        A[:n, n] = Jws
+        A[n, :n] = gx
+        A[n, n] = gw
+        du = np.linalg.solve(A, -np.concatenate([R, [g]]))
+        if not np.all(np.isfinite(du)):
+            break
+        x = x + du[:n] * xs
+        w = w + du[n] * wscale
+        nv, nw = np.linalg.norm(v), np.linalg.norm(wl)
+        c, b = v / max(nv, 1e-300), wl / max(nw, 1e-300)
+        big = np.max(np.abs(du))
+        lim = tol * max(1.0, np.max(np.abs(x / xs)))
+        # converged, or quadratic convergence predicting the next step far below the tolerance
+        if big <= lim or (it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
+            return x, w, it
+        last = big
+    raise SolverError(f"the fold near omega = {w0:.6g} was not located by the extended Newton system")
+
+
+def correct_on_plane(fun, xp, wp, normal, xscale, wscale, tol=1e-10, maxit=40):
+    """The branch point on the hyperplane through (xp, wp) orthogonal to the scaled direction ``normal``
+    (Newton on R = 0 and normal . (u - u_p) = 0: regular at folds; at a branch point the system is
+    singular and Newton converges linearly, hence the iteration limit).  Returns (x, w, iterations)."""
+    xs = np.asarray(xscale, float)
+    n = xs.size
+    up = np.concatenate([np.asarray(xp, float) / xs, [wp / wscale]])
+    u = up.copy()
+    for it in range(1, maxit + 1):
+        x, w = u[:n] * xs, u[n] * wscale
+        R, Jx, Jw = fun(x, w)
+        A = np.zeros((n + 1, n + 1))
+        A[:n, :n] = Jx * xs[None, :]
+        A[:n, n] = Jw * wscale
+        A[n] = normal
+        du = np.linalg.solve(A, -np.concatenate([R, [normal @ (u - up)]]))
+        u = u + du
+        if not np.all(np.isfinite(u)):
+            break
+        if np.max(np.abs(du)) <= tol * max(1.0, np.max(np.abs(u))):
+            return u[:n] * xs, u[n] * wscale, it
+    raise SolverError(f"no branch point on the plane near omega = {wp:.6g}")
 
 
 def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):

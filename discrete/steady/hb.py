@@ -36,16 +36,31 @@ class HBModel:
     Everything that depends on the model only (bases, exogenous terms by powers of omega, index maps)
     is built once."""
 
-    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None):
+    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None, kinks: str = "exact"):
         self.s = system
         self.H = int(harmonics)
         self.nu = int(nu)
+        self.samples = samples             # as asked (None: the defaults below)
         H = self.H
-        # discontinuous (friction sign) or kinked (one-sided, gap) forces: AFT sampling error ~ 1/N
-        # resp. 1/N^2, so these get a denser default grid
-        smooth = min((el.smoothness for el in system.elements), default=2)
-        N = samples or (max(1024, 16 * H) if smooth == 0 else max(256, 16 * H) if smooth == 1 else max(64, 8 * H + 4))
+        if kinks not in ("exact", "sampled"):
+            raise ValueError(f"kinks = {kinks!r}: 'exact' | 'sampled'")
+        self.kinks = kinks
+        # piecewise-affine laws (gaps, stops, one-sided springs) integrated exactly over their crossings
+        # (piecewise.py) unless kinks = "sampled"; the others are sampled (AFT)
+        laws = [el.piecewise_law() if kinks == "exact" else None for el in system.elements]
+        # discontinuous (friction sign) or kinked (sampled one-sided, gap) forces: AFT sampling error ~ 1/N
+        # resp. 1/N^2, so these get a denser default grid -- with kinks = "exact" only where needed: the
+        # rough laws are evaluated on the dense grid (N_fine) at the evaluations where their samples on the
+        # HB grid (N) are not exact (Element.sampled_exactly: a saturated clutch is a polynomial law)
+        smooth = min((2 if law is not None else el.smoothness for el, law in zip(system.elements, laws)), default=2)
+        if samples:
+            N = N_fine = int(samples)
+        elif kinks == "exact":
+            N, N_fine = default_samples(H, 2), default_samples(H, smooth)
+        else:
+            N = N_fine = default_samples(H, smooth)
         self.N = N
+        self.N_fine = N_fine
         th = 2 * np.pi * np.arange(N) / N
         G = _basis(H, th)
         D = np.zeros((2 * H + 1, 2 * H + 1))
@@ -85,6 +100,72 @@ class HBModel:
         self._block_map = csr_matrix((coef.ravel(), (cols.ravel(), idx.ravel())), shape=(self.m * self.m, 4 * self.m))
         self._bases = {}
         self._lin = (None, None, None, None)
+        self._setup_piecewise(laws)
+
+    def _setup_piecewise(self, laws):
+        """The elements whose laws are integrated exactly (:mod:`.piecewise`): those with a piecewise-affine
+        law whose exogenous coordinate is a trigonometric polynomial of degree <= H (no drift)."""
+        from .piecewise import ExactProjection
+
+        g = self._grid
+        self._rough = [e for e, (el, law) in enumerate(zip(self.s.elements, laws))
+                       if law is None and el.smoothness < 2] if self.N_fine > self.N else []
+        self.fine_evaluations = 0
+        self._go_fine = {}
+        pw = []
+        for e, law in enumerate(laws):
+            if law is None:
+                continue
+            parts = [g.sa[e] @ self.Pm, g.sda[e] @ self.Pm, g.sdb[e] @ self.Pm]
+            back = [p @ self.G for p in parts]
+            scale = max(1.0, *(float(np.max(np.abs(x))) for x in (g.sa[e], g.sda[e], g.sdb[e])))
+            if np.any(g.sb[e] != 0) or max(float(np.max(np.abs(b - x))) for b, x in
+                                             zip(back, (g.sa[e], g.sda[e], g.sdb[e]))) > 1e-12 * scale:
+                continue
+            pw.append((e, ExactProjection(law, self.H), *parts))
+        self._pw = pw
+        done = {p[0] for p in pw}
+        self._sampled = [e for e in range(len(self.s.elements)) if e not in done]
+        self._pw_jump = False
+
+    def exogenous_series(self, e: int):
+        """The exogenous parts (sa, sb, sda, sdb) of element e's coordinate as real series in theta
+        (projections of the grid parts: exact for the harmonic drivers, whose degree nu <= H; a drift
+        term t in sb is not periodic and is projected like the rest)."""
+        key = ("exo", e)
+        v = self._bases.get(key)
+        if v is None:
+            g = self._grid
+            v = self._bases[key] = tuple(x[e] @ self.Pm for x in (g.sa, g.sb, g.sda, g.sdb))
+        return v
+
+    def constant_coefficients(self, X, omega) -> bool:
+        """Whether the variational equation along the orbit X has coefficients constant between the
+        crossings of the exactly integrated laws: every sampled law's dF/ds and dF/ds' are the same at all
+        HB samples (a polynomial law of degree <= 3, exact on the grid, whose derivative -- a polynomial
+        of the coordinates of degree <= 2H -- takes one value at more than 4H points is constant)."""
+        s = self.s
+        A = s.Gf @ np.asarray(X, float).reshape(s.n, self.m)
+        S, Sd, _ = self._element_coordinates(A, omega)
+        for e in self._sampled:
+            el = s.elements[e]
+            if e in self._rough and not el.sampled_exactly(S[e], Sd[e], s.eps):
+                return False
+            _, dFs, dFv = el.smooth_force(S[e], Sd[e], s.eps)
+            if np.ptp(dFs) != 0 or np.ptp(dFv) != 0:
+                return False
+        return True
+
+    def rough_exact(self, X, omega) -> bool:
+        """Whether every rough (discontinuous, sampled) law is exact on the HB grid along the orbit X."""
+        A = self.s.Gf @ np.asarray(X, float).reshape(self.s.n, self.m)
+        S, Sd, _ = self._element_coordinates(A, omega)
+        return all(self.s.elements[e].sampled_exactly(S[e], Sd[e], self.s.eps) for e in self._rough)
+
+    @property
+    def exact_elements(self) -> list:
+        """Indices of the elements whose laws are integrated exactly (no sampling)."""
+        return [p[0] for p in self._pw]
 
     def times(self, omega):
         return self.theta * self.nu / omega
@@ -117,8 +198,11 @@ class HBModel:
     def element_blocks(self, cs, cv, Om):
         """``T(cs) + Om T(cv) D^T`` (k, m, m) for sampled dF/ds, dF/ds' sums cs, cv (k, N): one FFT
         and one sparse map of the DFT sums (four entries per matrix entry, :func:`_block_maps`)."""
-        k = cs.shape[0]
-        F = self._dft(np.concatenate([cs, cv]))
+        return self.spectral_blocks(self._dft(np.concatenate([cs, cv])), cs.shape[0], Om)
+
+    def spectral_blocks(self, F, k, Om):
+        """:meth:`element_blocks` from the DFT sums ``F`` (2k, 2H+1) of dF/ds (first k rows) and dF/ds'
+        (the sums over the N samples, or N times the exact Fourier coefficients)."""
         U = np.empty((k, 4 * self.m))
         m = self.m
         U[:, :m], U[:, m:2 * m] = F.real[:k], -F.imag[:k]
@@ -144,6 +228,8 @@ class HBModel:
         for part, scale in self._forcing_terms:
             R -= (fa, fb, fc, fd)[part] * (1.0, 1.0 / omega, omega, omega * omega)[part]
         nel = len(s.elements)
+        if nel and (self._pw or self._rough):
+            return self._evaluate_piecewise(Q, QD, QDD, R, omega, jac, dw)
         if nel:
             g = self._grid
             A = s.Gf @ Q
@@ -179,6 +265,144 @@ class HBModel:
             J = JK + Om * JC + (Om * Om) * JM
             if nel and self._pair_src.size:
                 B = self.element_blocks(self._pair_weights @ dFs, self._pair_weights @ dFv, Om)
+                if n == 1:
+                    J -= B[0]
+                else:
+                    J = J.reshape(n, m, n, m)
+                    J[self._pair_rows, :, self._pair_cols, :] -= B[self._pair_src]
+                    J = J.reshape(n * m, n * m)
+        return R.ravel(), J, Rw
+
+    def _element_coordinates(self, A, omega):
+        """Samples (S, Sd, d Sd/d omega at fixed coefficients) of the element coordinates on the grid."""
+        g = self._grid
+        Om = omega / self.nu
+        nel = A.shape[0]
+        SG = np.concatenate([A, A @ self.D]) @ self.G
+        S, ADG = SG[:nel], SG[nel:]
+        if self._exo[0]:
+            S = S + g.sa
+        if self._exo[1]:
+            S = S + g.sb / omega
+        Sd = Om * ADG
+        if self._exo[2]:
+            Sd = Sd + g.sda
+        if self._exo[3]:
+            Sd = Sd + omega * g.sdb
+        return S, Sd, ADG
+
+    def element_projection(self, X, omega, jac=True, dw=False, J=None):
+        """The Galerkin projection (nel, 2J+1) of every element force on harmonics 0..J (default H; the
+        sampled elements need 2J < N), and with ``jac`` the spectra (N-scaled DFT sums (nel, 2H+1)) of
+        dF/ds and dF/ds' and the moving-boundary matrices {element: (m, m)}; with ``dw`` the projection of
+        dF/domega at fixed coefficients (nel, m)."""
+        s = self.s
+        n, m, nu = s.n, self.m, self.nu
+        Q = np.asarray(X, float).reshape(n, m)
+        Om = omega / nu
+        A = s.Gf @ Q
+        S, Sd, ADG = self._element_coordinates(A, omega)
+        nel = A.shape[0]
+        Jh = self.H if J is None else int(J)
+        Fp = np.zeros((nel, 2 * Jh + 1))
+        Fw = np.zeros((nel, m)) if dw else None
+        spec_s = spec_v = None
+        jumps = {}
+        if jac:
+            spec_s = np.zeros((nel, m), complex)
+            spec_v = np.zeros((nel, m), complex)
+        # a rough law found not exact on the HB grid at the last evaluation goes to the dense grid directly
+        # (and back to the HB grid once its dense samples show it exact)
+        fine_now = [e for e in self._rough if self._go_fine.get(e)]
+        smp = [e for e in self._sampled if e not in fine_now] if fine_now else self._sampled
+        for e in fine_now:
+            exact = self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
+            self._go_fine[e] = not exact
+        if smp:
+            F = np.empty((len(smp), self.N))
+            dFs, dFv = np.empty_like(F), np.empty_like(F)
+            for r, e in enumerate(smp):
+                F[r], dFs[r], dFv[r] = s.elements[e].smooth_force(S[e], Sd[e], s.eps)
+            if Jh == self.H:
+                Fp[smp] = F @ self.Pm
+            else:
+                Fp[smp] = _real_series(np.fft.rfft(F, axis=-1)[:, :Jh + 1], self.N)
+            if dw:
+                dSd = ADG[smp] / nu + self._grid.sdb[smp] if self._exo[3] else ADG[smp] / nu
+                dS = dFv * dSd
+                if self._exo[1]:
+                    dS = dS - dFs * self._grid.sb[smp] / omega ** 2
+                Fw[smp] = dS @ self.Pm
+            if jac:
+                sp = self._dft(np.concatenate([dFs, dFv]))
+                spec_s[smp], spec_v[smp] = sp[:len(smp)], sp[len(smp):]
+            for e in self._rough:          # not exact on this grid: the dense grid for this element
+                if e in smp and not s.elements[e].sampled_exactly(S[e], Sd[e], s.eps):
+                    self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
+                    self._go_fine[e] = True
+        for e, proj, sa, sda, sdb in self._pw:
+            Cs = A[e] + sa
+            AD = A[e] @ self.D
+            Cv = Om * AD + sda + omega * sdb
+            out = proj.evaluate(Cs, Cv, S[e], J=Jh, Cw=(AD / nu + sdb) if dw else None, jac=jac)
+            Fp[e] = out["F"]
+            if dw:
+                Fw[e] = out["Fw"]
+            if jac:
+                spec_s[e], spec_v[e] = self.N * out["spec_s"], self.N * out["spec_v"]
+                if out["jump"] is not None:
+                    jumps[e] = out["jump"]
+        return Fp, spec_s, spec_v, jumps, Fw
+
+    def _fine_element(self, e, Ae, omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v) -> bool:
+        """Element e's projections, spectra (scaled to the HB grid's sums) and dF/domega from the dense grid;
+        returns whether its law is exact on samples there (it would be on the HB grid too)."""
+        s = self.s
+        Nf = self.N_fine
+        self.fine_evaluations += 1
+        G, DG = self.basis(Nf)
+        g = self.grid(Nf)
+        Om = omega / self.nu
+        Sd_ = Ae @ DG
+        S = Ae @ G + g.sa[e] + g.sb[e] / omega
+        Sd = Om * Sd_ + g.sda[e] + omega * g.sdb[e]
+        F, dFs, dFv = s.elements[e].smooth_force(S, Sd, s.eps)
+        Fs = np.fft.rfft(F)
+        Fp[e] = _real_series(Fs[:Jh + 1], Nf)
+        if dw:
+            dS = dFv * (Sd_ / self.nu + g.sdb[e]) - dFs * g.sb[e] / omega ** 2
+            Fw[e] = _real_series(np.fft.rfft(dS)[:self.H + 1], Nf)
+        if jac:
+            scale = self.N / Nf
+            spec_s[e] = np.fft.rfft(dFs)[:self.m] * scale
+            spec_v[e] = np.fft.rfft(dFv)[:self.m] * scale
+        return s.elements[e].sampled_exactly(S, Sd, s.eps)
+
+    def _evaluate_piecewise(self, Q, QD, QDD, R, omega, jac, dw):
+        """:meth:`evaluate_residual` with exactly integrated elements (R: the linear part and forcing)."""
+        s = self.s
+        n, m, nu = s.n, self.m, self.nu
+        Om = omega / nu
+        Fp, spec_s, spec_v, jumps, Fw = self.element_projection(Q, omega, jac=jac, dw=dw)
+        R -= s.Gf.T @ Fp
+        Rw = None
+        if dw:
+            Rw = (s.C @ QD + (2 * Om) * (s.M @ QDD)) / nu
+            fa, fb, fc, fd = self._fP
+            for part, _ in self._forcing_terms:
+                if part:
+                    Rw -= (None, -fb / omega ** 2, fc, (2 * omega) * fd)[part]
+            Rw -= s.Gf.T @ Fw
+            Rw = Rw.ravel()
+        J = None
+        if jac:
+            JK, JC, JM = self._linear_jacobians()
+            J = JK + Om * JC + (Om * Om) * JM
+            if self._pair_src.size:
+                P = self._pair_weights
+                B = self.spectral_blocks(np.concatenate([P @ spec_s, P @ spec_v]), P.shape[0], Om)
+                for e, Bj in jumps.items():
+                    B += P[:, e][:, None, None] * Bj[None]
                 if n == 1:
                     J -= B[0]
                 else:
@@ -270,6 +494,25 @@ class HBModel:
         return th / Om, Q @ G, Om * (Q @ DG)
 
 
+def default_samples(H: int, smoothness: int) -> int:
+    """Default AFT samples per period for H harmonics and the roughest sampled law (0: discontinuous,
+    1: kinked, 2: smooth)."""
+    if smoothness == 0:
+        return max(1024, 16 * H)
+    if smoothness == 1:
+        return max(256, 16 * H)
+    return max(64, 8 * H + 4)
+
+
+def _real_series(F, N):
+    """Real series [c0, a1, b1, ..] (the Galerkin projection) from the DFT sums F (k, J+1) of N samples."""
+    out = np.empty(F.shape[:-1] + (2 * F.shape[-1] - 1,))
+    out[..., 0] = F[..., 0].real / N
+    out[..., 1::2] = 2.0 * F[..., 1:].real / N
+    out[..., 2::2] = -2.0 * F[..., 1:].imag / N
+    return out
+
+
 def _basis(H: int, th) -> np.ndarray:
     """[1, cos th, sin th, ..., cos H th, sin H th] at the phases th: (2H+1, len(th))."""
     G = np.ones((2 * H + 1, np.size(th)))
@@ -339,6 +582,41 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     n, m, nel = s.n, model.m, len(s.elements)
     Xs = np.asarray(Xs, float).reshape(-1, n, m)
     omegas = np.asarray(omegas, float).ravel()
+    if steps is not None or not Xs.shape[0]:
+        return _floquet_steps(model, Xs, omegas, steps, chunk_entries)
+    if model._pw:
+        # piecewise-constant coefficients (every exactly integrated law between its crossings, and every
+        # sampled law whose dF/ds, dF/ds' samples are constant: a saturated clutch): the exponentials of
+        # the crossing-cut intervals are exact, however few -- eight uniform intervals then suffice
+        const = np.array([model.constant_coefficients(X, w) for X, w in zip(Xs, omegas)])
+        if np.any(const):
+            out = np.empty((Xs.shape[0], 2 * n), complex)
+            out[const] = _floquet_steps(model, Xs[const], omegas[const], 8, chunk_entries)
+            if not np.all(const):
+                out[~const] = _floquet_default(model, Xs[~const], omegas[~const], chunk_entries)
+            return out
+    return _floquet_default(model, Xs, omegas, chunk_entries)
+
+
+def _floquet_default(model, Xs, omegas, chunk_entries):
+    """max(512, 2 N) intervals; the dense grid's for the orbits whose rough laws are not exact on the HB grid."""
+    if not model._rough:
+        return _floquet_steps(model, Xs, omegas, None, chunk_entries)
+    n = model.s.n
+    fine = np.array([not model.rough_exact(X, w) for X, w in zip(Xs, omegas)])
+    if np.any(fine) and not np.all(fine):
+        out = np.empty((Xs.shape[0], 2 * n), complex)
+        out[fine] = _floquet_steps(model, Xs[fine], omegas[fine], max(512, 2 * model.N_fine), chunk_entries)
+        out[~fine] = _floquet_steps(model, Xs[~fine], omegas[~fine], max(512, 2 * model.N), chunk_entries)
+        return out
+    return _floquet_steps(model, Xs, omegas, max(512, 2 * (model.N_fine if np.any(fine) else model.N)),
+                          chunk_entries)
+
+
+def _floquet_steps(model, Xs, omegas, steps, chunk_entries):
+    """The batch with ``steps`` uniform intervals (default max(512, 2 N)), cut at crossings."""
+    s = model.s
+    n = s.n
     M = steps or max(512, 2 * model.N)
     key = ("mid", M)
     mid = model._bases.get(key)
@@ -349,13 +627,59 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
     G, DG, grid = mid
     Minv = np.linalg.inv(s.M)
     d = 2 * n
-    P = max(1, int(chunk_entries // (M * d * d)))
+    split = bool(model._pw)        # exactly integrated laws: intervals split at their crossings
+    if split and Xs.shape[0]:
+        cuts = _crossing_phases(model, Xs)
+        has = np.array([c.size > 0 for c in cuts])
+        if not np.all(has):        # orbits without a crossing: the uniform intervals are exact already
+            out = np.empty((Xs.shape[0], d), complex)
+            out[~has] = _floquet_uniform(model, Xs[~has], omegas[~has], M, chunk_entries)
+            if np.any(has):
+                out[has] = _floquet_core(model, Xs[has], omegas[has], M, chunk_entries, True,
+                                         [c for c, f in zip(cuts, has) if f])
+            return out
+        return _floquet_core(model, Xs, omegas, M, chunk_entries, True, cuts)
+    return _floquet_core(model, Xs, omegas, M, chunk_entries, split)
+
+
+def _floquet_uniform(model, Xs, omegas, M, chunk_entries):
+    return _floquet_core(model, Xs, omegas, M, chunk_entries, False)
+
+
+def _crossing_phases(model, Xs):
+    """Per orbit, the crossing phases of its exactly integrated laws."""
+    from .piecewise import crossings
+
+    A = model.s.Gf @ Xs                                       # (P, nel, m)
+    out = []
+    for p in range(Xs.shape[0]):
+        th = [crossings(A[p, e] + sa, (A[p, e] + sa) @ model.G, proj.law.breaks)[0]
+              for e, proj, sa, _, _ in model._pw]
+        out.append(np.concatenate(th) if th else np.zeros(0))
+    return out
+
+
+def _floquet_core(model, Xs, omegas, M, chunk_entries, split, cuts=None):
+    s = model.s
+    n, m, nel = s.n, model.m, len(s.elements)
+    G, DG, grid = model._bases[("mid", M)]
+    Minv = np.linalg.inv(s.M)
+    d = 2 * n
+    P = max(1, int(chunk_entries // ((M + (8 if split else 0)) * d * d)))
     out = np.empty((Xs.shape[0], d), complex)
     for c0 in range(0, Xs.shape[0], P):
         Q, w = Xs[c0:c0 + P], omegas[c0:c0 + P]
         Om = w / model.nu
         h = 2 * np.pi * model.nu / w / M
-        if nel:
+        Mp = M
+        if split:
+            # the piecewise-affine laws' coefficients are constant between crossings: the uniform
+            # intervals are cut at the crossings (zero-length padding intervals are identities), so
+            # the midpoint exponentials of such a law are exact
+            S, Sd, hh = _split_coordinates(model, Q, w, M, None if cuts is None else cuts[c0:c0 + P])
+            Mp = hh.shape[1]
+            _, dFs, dFv = s.element_laws(np.moveaxis(S, 1, 0), np.moveaxis(Sd, 1, 0))
+        elif nel:
             A = s.Gf @ Q                                          # (P, nel, m)
             S = A @ G + grid.sa + grid.sb / w[:, None, None]
             Sd = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
@@ -363,9 +687,12 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
         if d == 2:        # one DOF: the 2x2 blocks as component arrays (P, M)
             k = s.K[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFs, 1) if nel else 0.0)
             c = s.C[0, 0] - (np.tensordot(model._gg[:, 0, 0], dFv, 1) if nel else 0.0)
-            shape = (Q.shape[0], M)         # (k and c are scalars without elements)
-            E = _expm2_runs(h, np.broadcast_to(-Minv[0, 0] * k * h[:, None], shape),
-                            np.broadcast_to(-Minv[0, 0] * c * h[:, None], shape))
+            shape = (Q.shape[0], Mp)         # (k and c are scalars without elements)
+            if split:
+                E = _expm2_runs(hh, -Minv[0, 0] * k * hh, -Minv[0, 0] * c * hh)
+            else:
+                E = _expm2_runs(h, np.broadcast_to(-Minv[0, 0] * k * h[:, None], shape),
+                                np.broadcast_to(-Minv[0, 0] * c * h[:, None], shape))
             while E[0].shape[1] > 1:
                 if E[0].shape[1] % 2:
                     one = np.ones((Q.shape[0], 1))
@@ -378,7 +705,8 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
             continue
         # the interval matrices depend on (h, dF_e/ds, dF_e/ds') only: piecewise-linear laws (contact on/off)
         # and saturated friction (tanh' = 0 while slipping) repeat them exactly -- exponentiate each once
-        keys = np.concatenate([np.repeat(h, M)[:, None]] + ([dFs.reshape(nel, -1).T, dFv.reshape(nel, -1).T] if nel else []), axis=1)
+        hcol = hh.reshape(-1, 1) if split else np.repeat(h, M)[:, None]
+        keys = np.concatenate([hcol] + ([dFs.reshape(nel, -1).T, dFv.reshape(nel, -1).T] if nel else []), axis=1)
         first, inv = _unique_rows(keys)
         uk = keys[first]
         hu, fs, fv = uk[:, 0], uk[:, 1:1 + nel], uk[:, 1 + nel:]
@@ -389,7 +717,7 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
         Y[:, :n, n:] = np.eye(n) * hb3
         Y[:, n:, :n] = -(Minv @ Kq) * hb3
         Y[:, n:, n:] = -(Minv @ Cv) * hb3
-        E = expm_batch(Y)[inv.ravel()].reshape(Q.shape[0], M, d, d)
+        E = expm_batch(Y)[inv.ravel()].reshape(Q.shape[0], Mp, d, d)
         while E.shape[1] > 1:           # ordered product E[M-1] ... E[1] E[0]
             if E.shape[1] % 2:
                 E = np.concatenate([E, np.broadcast_to(np.eye(d), (E.shape[0], 1, d, d))], axis=1)
@@ -406,6 +734,58 @@ def _multipliers(mono: np.ndarray) -> np.ndarray:
     if np.any(ok):
         out[ok] = np.linalg.eigvals(mono[ok])
     return out
+
+
+def _split_coordinates(model: HBModel, Q, w, M: int, cuts=None):
+    """Element coordinates (S, Sd: (P, nel, M')) at the midpoints of the M uniform intervals of each
+    orbit cut at the crossings of its exactly integrated laws, and the intervals' durations hh (P, M')
+    (orbits with fewer crossings padded with zero-length intervals at the period's end).  The uniform
+    midpoints' values come from the cached midpoint basis; only the sub-intervals of the cut ones are
+    evaluated afresh."""
+    from .piecewise import basis_at
+
+    s = model.s
+    P = Q.shape[0]
+    A = s.Gf @ Q                                              # (P, nel, m)
+    nel = A.shape[1]
+    G, DG, grid = model._bases[("mid", M)]
+    cuts = _crossing_phases(model, Q) if cuts is None else cuts
+    extra = max((c.size for c in cuts), default=0)
+    Mp = M + extra
+    Om = w / model.nu
+    S0 = A @ G + grid.sa + grid.sb / w[:, None, None]                        # (P, nel, M)
+    Sd0 = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
+    S = np.empty((P, nel, Mp))
+    Sd = np.empty((P, nel, Mp))
+    hh = np.zeros((P, Mp))
+    h = 2 * np.pi / M
+    for p, c in enumerate(cuts):
+        c = np.sort(c)
+        j = np.minimum((c / h).astype(int), M - 1)
+        cut = np.unique(j)
+        # sub-intervals of the cut intervals: boundaries = interval ends and the crossings inside
+        bnd = np.sort(np.concatenate([cut * h, (cut + 1) * h, c]))
+        owner = np.minimum(((bnd[:-1] + bnd[1:]) * 0.5 / h).astype(int), M - 1)
+        keep = np.isin(owner, cut) & (bnd[1:] > bnd[:-1])
+        lo, hi, owner = bnd[:-1][keep], bnd[1:][keep], owner[keep]
+        mids = 0.5 * (lo + hi)
+        Bm = basis_at(model.H, mids)                                         # (k, m)
+        g = s.grid_parts(mids, model.nu)
+        Ss = A[p] @ Bm.T + g.sa + g.sb / w[p]
+        Sds = Om[p] * (A[p] @ (Bm @ model.D.T).T) + g.sda + w[p] * g.sdb
+        # merge: the uniform intervals not cut, then the sub-intervals, in phase order
+        unc = np.setdiff1d(np.arange(M), cut, assume_unique=True)
+        ph = np.concatenate([(unc + 0.5) * h, mids])
+        order = np.argsort(ph, kind="stable")
+        n_ = order.size
+        S[p, :, :n_] = np.concatenate([S0[p][:, unc], Ss], axis=1)[:, order]
+        Sd[p, :, :n_] = np.concatenate([Sd0[p][:, unc], Sds], axis=1)[:, order]
+        hh[p, :n_] = np.concatenate([np.full(unc.size, h), hi - lo])[order]
+        if n_ < Mp:                                  # zero-length padding: identities
+            S[p, :, n_:] = S[p, :, n_ - 1:n_]
+            Sd[p, :, n_:] = Sd[p, :, n_ - 1:n_]
+    hh *= (model.nu / w)[:, None]
+    return S, Sd, hh
 
 
 def _unique_rows(keys):
@@ -451,7 +831,7 @@ def _expm2_parts(a, b, c, d):
 
 
 def _expm2_runs(h, c, d):
-    """exp of the one-DOF interval matrices [[0, h], [c, d]] (h (P,), c and d (P, M)) as component
+    """exp of the one-DOF interval matrices [[0, h], [c, d]] (h (P,) or (P, M), c and d (P, M)) as component
     arrays (P, M), each run of equal consecutive intervals exponentiated once: saturated friction
     (tanh' = 0 while slipping) and a contact on or off repeat the matrices exactly (seed 002's
     benchmark branch: 393 runs in 294 912 intervals).  Runs are found on the bit patterns, so the
@@ -459,14 +839,19 @@ def _expm2_runs(h, c, d):
     more runs than half the intervals (smooth laws) every interval is exponentiated directly."""
     P, M = c.shape
     new = np.ones((P, M), bool)
+    c, d = np.ascontiguousarray(c), np.ascontiguousarray(d)
     cb, db = c.view(np.uint64), d.view(np.uint64)
     new[:, 1:] = (cb[:, 1:] != cb[:, :-1]) | (db[:, 1:] != db[:, :-1])
+    if np.ndim(h) == 2:
+        h = np.ascontiguousarray(h)
+        hb = h.view(np.uint64)
+        new[:, 1:] |= hb[:, 1:] != hb[:, :-1]
     first = np.flatnonzero(new.ravel())
     if first.size > P * M // 2:
-        hh = np.broadcast_to(h[:, None], (P, M))
+        hh = np.broadcast_to(h if np.ndim(h) == 2 else h[:, None], (P, M))
         return _expm2_parts(np.zeros_like(hh), hh, c, d)
     length = np.diff(first, append=P * M)
-    hr = np.repeat(h, M)[first]
+    hr = (h.ravel() if np.ndim(h) == 2 else np.repeat(h, M))[first]
     parts = _expm2_parts(np.zeros_like(hr), hr, c.ravel()[first], d.ravel()[first])
     return tuple(np.repeat(p, length).reshape(P, M) for p in parts)
 

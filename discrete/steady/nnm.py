@@ -87,11 +87,11 @@ class Backbone:
 class EPMC:
     """Residual of the EPMC equations (module docstring) by harmonic balance on ``system``."""
 
-    def __init__(self, system, harmonics: int = 7, samples: int | None = None, ref: int = 0):
+    def __init__(self, system, harmonics: int = 7, samples: int | None = None, ref: int = 0, kinks: str = "exact"):
         if not 0 <= ref < system.n:
             raise ModelError("backbone", "dof", ref, f"a free DOF index 0 .. {system.n - 1}")
         self.s = system
-        self.hb = HBModel(FreeSystem(system), harmonics=harmonics, nu=1, samples=samples)
+        self.hb = HBModel(FreeSystem(system), harmonics=harmonics, nu=1, samples=samples, kinks=kinks)
         self.ref = int(ref)
         m = self.hb.m
         self.ia, self.ib = self.ref * m + 1, self.ref * m + 2
@@ -150,12 +150,12 @@ class EPMC:
 
 
 def backbone(system, harmonics: int, amplitudes, X0, omega0, ref: int = 0, samples: int | None = None,
-             names=None, min_step: float = 1e-3) -> Backbone:
+             names=None, min_step: float = 1e-3, kinks: str = "exact") -> Backbone:
     """The nonlinear mode of ``system`` through the reference DOF ``ref``, continued over the first-harmonic
     amplitudes ``amplitudes`` (in the given order) from the periodic state ``X0`` at ``omega0`` (any orbit
     near the mode, e.g. the peak of a forced curve).  Stops early (``completed = False``, ``reason``) when
-    the step falls below ``min_step`` of the first one."""
-    ep = EPMC(system, harmonics=harmonics, samples=samples, ref=ref)
+    the step falls below ``min_step`` of the first one.  ``kinks``: as :class:`~discrete.steady.hb.HBModel`."""
+    ep = EPMC(system, harmonics=harmonics, samples=samples, ref=ref, kinks=kinks)
     u, _ = ep.start(X0, omega0)
     amps = np.asarray(amplitudes, float)
     out_a, out_u = [], []
@@ -218,7 +218,10 @@ def afc_backbone(sm, result, points: int = 40) -> Backbone:
     if not result.omega.size:
         raise SolverError("no backbone: the forced curve has no point")
     if result.method.startswith("hb"):
-        Q = np.array(result.states).reshape(len(result.states), s.n, m)
+        from .bifurcation import pad_harmonics      # adaptive curves: states of several harmonic counts
+
+        Q = np.array([pad_harmonics(x, s.n, (np.size(x) // s.n - 1) // 2, H) for x in result.states]).reshape(
+            len(result.states), s.n, m)
         a1 = np.hypot(Q[:, ref, 1], Q[:, ref, 2])
         k = int(np.argmax(a1))
         X0, w0, a_max = Q[k].ravel(), float(result.omega[k]), float(a1[k])
@@ -241,7 +244,7 @@ def afc_backbone(sm, result, points: int = 40) -> Backbone:
             w0 = float(np.sqrt(lam[j].real))
     amps = np.linspace(a_max, max(a_min, 0.02 * a_max), int(points))
     names = [s.problem.names[j] for j in s.problem.f]
-    bb = backbone(s, H, amps, X0, w0, ref=ref, samples=cfg.samples, names=names)
-    ep = EPMC(s, harmonics=H, samples=cfg.samples, ref=ref)
+    bb = backbone(s, H, amps, X0, w0, ref=ref, samples=cfg.samples, names=names, kinks=cfg.kinks)
+    ep = EPMC(s, harmonics=H, samples=cfg.samples, ref=ref, kinks=cfg.kinks)
     bb.response = np.array(sm.measure_hb(ep.hb, bb.states, bb.omega))
     return bb

@@ -1,5 +1,5 @@
 """The ``drivefem`` command line: argument parsing only; each command is one function of
-:mod:`fem.app.commands` (design.md §5, README "CLI and JSON")."""
+:mod:`fem.app.commands` (design.md §5, docs/cli.md)."""
 from __future__ import annotations
 
 import argparse
@@ -77,7 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--fast", action="store_true", help="skip the slow cases")
     v.set_defaults(func=commands.validate)
     k = sub.add_parser("schema", help="print the JSON Schema of model files (for editors: Taplo, Even Better TOML)")
-    k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive", "rotor"],
+    k.add_argument("kind", nargs="?", choices=["fe", "lumped", "hybrid", "drive", "rotor", "train"],
                    help="one kind of model file (default: any model file)")
     k.add_argument("--out", metavar="FILE.json", help="write the schema to this file")
     k.set_defaults(func=commands.schema)
@@ -94,6 +94,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import rotor as rotor_command
 
     rotor_command.add_parser(sub)          # drivefem campbell; modal and forced of [rotor] files
+    from . import train as train_command
+
+    train_command.add_parser(sub)          # modal, campbell, ... of train files ([[shaft]], [[mesh]])
     from . import convert as convert_command
 
     convert_command.add_parser(sub)        # drivefem convert: a ROSS rotor file -> a drivefem rotor file

@@ -1,5 +1,5 @@
 """One function per ``drivefem`` command: load the model once, run the analysis of its kind, write
-the outputs through the output layer, return the exit code (documented in the README):
+the outputs through the output layer, return the exit code (documented in docs/cli.md):
 
 0 done; 1 done but incomplete (a run or continuation stopped early, a sweep point failed, a
 validation case failed); 2 bad input (model, options, paths); 3 modes not reliable in double
@@ -158,7 +158,7 @@ def forced(args) -> int:
             folder.mkdir(parents=True, exist_ok=True)
         main = one or folder / ("afc.png" if steady else "frf.png")
         if steady:
-            plot_afc(res, main, title=study.title)
+            plot_afc(res, main, title=study.title or None)
             print(f"wrote {main}")
         else:
             print(f"wrote {plot_frf(res, main, study.title)}")

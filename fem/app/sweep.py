@@ -211,7 +211,8 @@ def _steady_point(study, periods: int) -> dict:
     except Exception as exc:
         out.update(converged=False, shooting_error=f"{type(exc).__name__}: {exc}")
     out["response"] = sm.measure(res.t, res.x[p.f], res.v[p.f], w)
-    out["outputs"] = _orbit_outputs(study, res)
+    # named outputs of the orbit: lumped and hybrid files (a train's steady point has its response only)
+    out["outputs"] = _orbit_outputs(study, res) if study.kind in ("lumped", "hybrid") else None
     return out
 
 

@@ -8,6 +8,7 @@ container and the plots.
 | hybrid | drive outputs + section loads of the FE shaft | [steady] curve | drive outputs + section loads |
 | fe | section loads + support reactions (+ [[output]] node motions) | the same, complex per frequency | -- |
 | rotor | section loads + bearing/pedestal/support reactions (complex modes at the analysis speed) | the same per speed (unbalance response) | run-up: speed, probe orbits, rub forces, bearing reactions ([[output]]: section loads) |
+| train | -- (own keys) | -- (own keys: mesh forces, load factors, bearing forces) | connection forces, bearing reactions (fem.train.outputs) |
 
 Campbell diagrams: the reactions of every tracked mode over the speeds.  Drive files and periodic forced
 responses have none (None).
@@ -32,6 +33,10 @@ def outputs(study, result):
     kind = study.kind
     if kind == "rotor":
         return _rotor(study, result)
+    if kind == "train":                 # a time simulation's connection forces and bearing reactions
+        from ..train.outputs import outputs as train_outputs
+
+        return train_outputs(study, result)
     if kind == "fe":
         return _fe(study, result)
     if kind in ("lumped", "hybrid"):

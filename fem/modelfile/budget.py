@@ -133,8 +133,9 @@ def check_start_integration(t_end: float, omega_max: float, periods: int) -> Non
                 "over start_periods x subharmonic forcing periods)", periods)
 
 
-def check_hb(n_dofs: int, harmonics: int) -> None:
-    check_count("[steady]", "harmonics", n_dofs * (2 * harmonics + 1), MAX_HB_UNKNOWNS,
+def check_hb(n_dofs: int, harmonics: int, key: str = "harmonics") -> None:
+    """The HB unknowns n_dofs (2 harmonics + 1) within the budget (``key``: the key that sets them)."""
+    check_count("[steady]", key, n_dofs * (2 * harmonics + 1), MAX_HB_UNKNOWNS,
                 f"harmonic-balance unknowns ({n_dofs} DOFs x (2 harmonics + 1))")
 
 

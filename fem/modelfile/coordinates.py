@@ -52,6 +52,10 @@ def check_document(model: Table, raw: dict, kind: str) -> None:
     if kind in ("fe", "hybrid"):
         physics = model.model.physics
     _walk(model, raw, [], kind, physics)
+    if kind == "train":          # each FE shaft's nested FE tables by that shaft's physics
+        for t, r in zip(model.shaft, raw.get("shaft", []) if isinstance(raw.get("shaft"), list) else []):
+            if t.model is not None and isinstance(r, dict):
+                _walk(t, r, [], kind, t.model.physics)
 
 
 def _walk(table: Table, raw: dict, path: list, kind: str, physics: str | None) -> None:

@@ -1,4 +1,4 @@
-"""The output contract: what every command's JSON holds (README "CLI and JSON").
+"""The output contract: what every command's JSON holds (docs/cli.md).
 
 Every file has ``schema`` ("drivefem.<command>"), ``version`` (:data:`SCHEMA_VERSION`), ``title``
 and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
@@ -22,6 +22,10 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   omega_1, n_omega), ``rho_max``, ``stable``, ``growth_rate_1_s``, ``error_estimate``,
   ``liouville_residual`` (n_depth x n_omega), ``natural_omega_rad_s``, ``centres``, ``thresholds``,
   ``boundaries``, ``modulations`` with ``parts``, ``damping``, ``inertia_form``, ``warnings``.
+* train files (kind ``train``): modal as rotor files plus ``energy_share``, ``whirl_by_shaft``,
+  ``speed_ratios``, ``mode_shapes`` (complex, every DOF with its label); campbell as rotor files plus
+  ``speed_ratios``; forced (``[forced]``) the response over speed: mesh forces, dynamic load factors,
+  bearing reactions (see docs/geared.md).
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
   shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per probe
@@ -30,7 +34,7 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   n_nodes); simulate is the run-up; campbell: ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``,
   ``natural_frequency_rad_s``, ``log_decrement``, ``damping_ratio``, ``whirl`` (n_modes x n_speeds),
   ``kind_of_mode``, ``mac_min``, ``residual_max``, ``orders``, ``critical_speeds``, ``warnings``.
-* ``named_outputs`` (every command of lumped, hybrid, FE and rotor files that has them; version 2,
+* ``named_outputs`` (every command of lumped, hybrid, FE and rotor files that has them, and train simulations; version 2,
   docs/outputs.md): {name: ``quantity``, ``unit``, ``source``, ``where`` (and ``x``, ``side``,
   ``section_quantity``, ``dof``, ... where they apply) + the analysis' values -- time histories: ``peak``,
   ``max``, ``min``, ``mean``, ``rms``, ``peak_to_peak``, ``dynamic_load_factor``; modes: ``modes``;
@@ -107,6 +111,8 @@ def modal_data(study, res) -> dict:
         return _drive_modal(res)
     if study.kind == "rotor":
         return _rotor_modal(study, res)
+    if study.kind == "train":
+        return _train_modal(study, res)
     d = res.to_dict()
     ok = res.reliable | res.rigid
     d["omega_rad_s"] = [v if r else None for v, r in zip(res.omega_rad_s.tolist(), ok)]
@@ -150,6 +156,14 @@ def forced_data(study, res) -> dict:
     """One shape for linear FE/lumped, drive and nonlinear (steady) results: outputs x frequencies."""
     from discrete.steady import AFCResult
 
+    if study is not None and study.kind == "train" and not isinstance(res, AFCResult):
+        d = _train_forced(res)
+        loads = res.static_section_loads(study.train)
+        if all(np.all(np.isfinite(np.asarray(q))) for v in loads.values() for q in v.quantities.values()):
+            d["section_loads_static"] = {k: v.to_dict() for k, v in loads.items()}
+        else:
+            d.setdefault("warnings", []).append("section loads not written: they overflow double precision")
+        return d
     if isinstance(res, AFCResult):
         d = res.to_dict()
         om = res.omega
@@ -298,5 +312,48 @@ def campbell_data(study, camp) -> dict:
     """The Campbell diagram of ``drivefem campbell`` (:class:`fem.rotor.CampbellResult`)."""
     d = camp.to_dict()
     d["kind_of_mode"] = d.pop("kind")          # "kind" is the file's kind in every document
-    d["n_dofs"] = study.rotor.n_dofs - int(study.rotor.constrained.size)
+    sys_ = study.train if study.kind == "train" else study.rotor
+    d["n_dofs"] = sys_.n_dofs - int(sys_.constrained.size)
+    if study.kind == "train":
+        d["speed_ratios"] = dict(study.train.ratios)
+    return d
+
+
+def _train_forced(res) -> dict:
+    """A train's linear response over speed (:class:`fem.train.forced.TrainForcedResult`): the speeds as
+    ``omega_rad_s``; outputs: every connection coordinate's peak force and dynamic load factor, every
+    bearing's peak radial force."""
+    d = res.to_dict()
+    outs, amp = [], []
+    for c in res.connections:
+        outs.append(f"{c.connection}:{c.coordinate} peak force")
+        amp.append(c.peak)
+        outs.append(f"{c.connection}:{c.coordinate} dynamic load factor")
+        amp.append(np.where(np.isfinite(c.dynamic_factor), c.dynamic_factor, 0.0))
+    for k, v in res.bearings.items():
+        outs.append(f"{k} peak radial force")
+        amp.append(v["peak_radial"])
+    w = res.speeds_rad_s
+    d.update({"omega_rad_s": w, "frequencies_hz": w / (2 * np.pi), "outputs": outs, "amplitude": amp,
+              "phase_lag_deg": None, "response": None, "steady": False,
+              "damping": "bearings, mesh and coupling dampers (no global damping)"})
+    return d
+
+
+def _train_modal(study, res) -> dict:
+    """Complex modes of a train at a reference speed (:class:`fem.train.TrainModes`)."""
+    d = res.to_dict()
+    ok = res.reliable | res.rigid
+    n = res.n_modes
+    d["omega_rad_s_unverified"] = d["omega_rad_s"]
+    d["omega_rad_s"] = [v if r else None for v, r in zip(d["omega_rad_s"], ok)]
+    d["frequencies_hz"] = [v if r else None for v, r in zip(d["frequencies_hz"], ok)]
+    d["eigenvalues"] = res.eigenvalues
+    d.pop("eigenvalues_real", None)
+    d.pop("eigenvalues_imag", None)
+    d["rayleigh_rel_diff"] = [None] * n
+    d["precision_bound"] = [None] * n
+    ts = study.train
+    d["speed_ratios"] = dict(ts.ratios)
+    d["mode_shapes"] = {"labels": res.labels, "shapes": res.shapes.T}
     return d

@@ -34,6 +34,11 @@ APPLICABLE = {
     "rotor_campbell": ("campbell", "modal"),
     "rotor_forced": ("forced", "modal", "campbell"),
     "rotor_simulate": ("simulate", "modal", "campbell"),
+    "train": ("modal", "campbell"),
+    "train_campbell": ("campbell", "modal"),
+    "train_forced": ("forced", "modal"),
+    "train_simulate": ("simulate", "modal"),
+    "train_parametric": ("parametric", "modal"),
     "other": ("modal", "forced", "simulate"),
 }
 #: A table that makes one more command apply: a [simulation] table (a steady or sweep file also simulates),
@@ -48,6 +53,11 @@ def kind_of(doc: dict) -> str:
     """The kind of a parsed model file, from the tables it has."""
     atype = doc.get("analysis", {}).get("type") if isinstance(doc.get("analysis"), dict) else None
     forced = atype == "forced"
+    if any(k in doc for k in ("train", "shaft", "mesh", "coupling")):
+        if "simulation" in doc and atype in (None, "simulate"):
+            return "train_simulate"
+        return {"campbell": "train_campbell", "forced": "train_forced", "simulate": "train_simulate",
+                "parametric": "train_parametric"}.get(atype, "train_forced" if "steady" in doc else "train")
     if "rotor" in doc:
         return {"campbell": "rotor_campbell", "forced": "rotor_forced", "simulate": "rotor_simulate"}.get(atype, "rotor")
     if atype == "parametric":
@@ -151,6 +161,14 @@ def cheapen(doc: dict) -> tuple[dict, list[str]]:
                     notes.append(f"[sweep] grid.{axis}: {len(spec)} values -> 2")
                 elif isinstance(spec, dict):
                     cap(spec, "points", 2, f"[sweep] grid.{axis}.")
+    for table in ("campbell", "forced", "parametric"):       # train files: fewer speeds
+        t = d.get(table)
+        if isinstance(t, dict):
+            for key in ("speeds", "speeds_rpm"):
+                if isinstance(t.get(key), dict):
+                    cap(t[key], "points", 5, f"[{table}] {key}.")
+            if isinstance(t.get("depth"), dict):
+                cap(t["depth"], "points", 2, f"[{table}] depth.")
     dr = d.get("drive")
     if isinstance(dr, dict):
         cap(dr, "n", 60, "[drive] ")

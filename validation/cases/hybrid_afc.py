@@ -34,11 +34,18 @@ SRC_1DOF_ROD = "Den Hartog (1931) exact Coulomb + viscous oscillator of mode 1 r
 
 
 # ------------------------------------------------------------------ measurement helpers
-def extreme(t: np.ndarray, y: np.ndarray) -> float:
-    """Maximum of y refined by the parabola through the largest sample and its neighbours.  An event's
-    two records (before and after it) may carry times that differ in the last bits (the event time
-    computed twice); samples closer than 1e-6 of the stencil's width count as one instant, where the
-    extreme is the sample itself (a reversal: v = 0 there, and the acceleration jumps, so no parabola)."""
+def extreme(t: np.ndarray, y: np.ndarray, events=None) -> float:
+    """Maximum of y refined by the parabola through the largest sample and its neighbours.  With the
+    ``events`` times (switches of a law: stick-slip, contact), no parabola across one (the series is only
+    C^1 there, and a slip reversal is itself the extreme) and an event's two records count as one instant:
+    discrete.steady.measures.  Without them, an event's two records (before and after it) may carry times
+    that differ in the last bits (the event time computed twice); samples closer than 1e-6 of the
+    stencil's width count as one instant, where the extreme is the sample itself (a reversal: v = 0
+    there, and the acceleration jumps, so no parabola)."""
+    if events is not None:
+        from discrete.steady.measures import refined_sample_extremes
+
+        return refined_sample_extremes(t, y, events)[0]
     k = int(np.argmax(y))
     if k == 0 or k == y.size - 1 or min(t[k] - t[k - 1], t[k + 1] - t[k]) <= 1e-6 * (t[k + 1] - t[k - 1]):
         return float(y[k])
@@ -46,9 +53,9 @@ def extreme(t: np.ndarray, y: np.ndarray) -> float:
     return float(y[k]) if c[0] >= 0 else float(c[2] - c[1] ** 2 / (4 * c[0]))
 
 
-def half_range(t: np.ndarray, y: np.ndarray) -> float:
-    """Half peak-to-peak value (amplitude) with refined extremes."""
-    return 0.5 * (extreme(t, y) + extreme(t, -y))
+def half_range(t: np.ndarray, y: np.ndarray, events=None) -> float:
+    """Half peak-to-peak value (amplitude) with refined extremes (``events``: see :func:`extreme`)."""
+    return 0.5 * (extreme(t, y, events) + extreme(t, -y, events))
 
 
 def parabola_top(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -222,8 +229,8 @@ def impact_checks() -> list:
     out.append(claim(f"{name} 1-DOF", SRC_1DOF_IMPACT, "the 1-DOF curve (370 .. 420 rad/s) completes with two folds",
                      bool(r1.completed) and len(r1.folds) == 2, note=r1.reason))
     om = impact_omitted(st, mode, ja, jt, sm1, hb1, r1.states[k1], float(r1.omega[k1]), ks, F0)
-    wp, Fp, _ = parabola_top(r.omega, r.response)
-    wp1, Fp1, _ = parabola_top(r1.omega, r1.response)
+    wp, Fp = r.peak()              # the maxima located along the branches (AFCResult.peak)
+    wp1, Fp1 = r1.peak()
     note = (f"higher modes: {1 - mode.share:.2%} of the static flexibility at the stop; contact frequency "
             f"{om['wc']:.0f} rad/s (omega_2 = {st.modal(2).omega_rad_s[1]:.0f}); first-order share in the "
             f"contact eps = {om['eps']:.3f} (static part k_s f_h = {om['static']:.3f})")
@@ -281,7 +288,9 @@ def hybrid_afc_vibro_impact():
     relative to the penetration (R_h: exact damped receptance minus mode 1's; the sum of magnitudes is
     the worst phase alignment) -- for the peak force, and its effect on the bilinear frequency
     2 w_o w_c/(w_o + w_c), eps_w = eps/2 k_s/(k1 + k_s) w_o/(w_o + w_c), for the peak and fold
-    frequencies.  Mode 1 carries 99.0 % of the static flexibility at the stop, but the stop is 3.9 times
+    frequencies.  The peaks compared are the maxima located along each branch (AFCResult.peak), not a
+    parabola through the three largest points (which moved with the point spacing of the condensed
+    continuation).  Mode 1 carries 99.0 % of the static flexibility at the stop, but the stop is 3.9 times
     stiffer than the beam there: the contact frequency sqrt((k1 + k_s)/m1) ~ 2.2 omega_1 and the 5th
     contact-force harmonic near omega_2 bring eps to ~8 % (measured error 6.6 %): the 1-DOF estimate
     is at the edge of its validity here (slow case hybrid_afc_breakdown: 0.3 % for k_s = 2e4 N/m,
@@ -298,7 +307,8 @@ def rod_sim_amplitude(res, T: float, n: int = 5) -> tuple[float, float]:
     s = res.solver
     x = s.x[s.names.index("u@x=1")]
     last, prev = windows(s.t, T, n)
-    return half_range(s.t[last], x[last]), half_range(s.t[prev], x[prev])
+    ev = [e.t for e in res.events]
+    return half_range(s.t[last], x[last], ev), half_range(s.t[prev], x[prev], ev)
 
 
 def rod_omitted(S, mode, omega: float, P0: float, F: float, X: float, harmonics: int = 59) -> float:
@@ -364,14 +374,16 @@ def rod_checks() -> list:
             y0 = np.concatenate([res.solver.x[p.f, -1], res.solver.v[p.f, -1]])
             y, _ = sh.solve(y0, w, np.maximum(np.abs(y0), 1e-12))
             _, orb = sh.run(y, w, dense=True)
-            A_sh = half_range(orb.t, orb.x[p.f][i_tip])
+            A_sh = half_range(orb.t, orb.x[p.f][i_tip], [e.t for e in orb.events])
             kinds = [e.kind for e in orb.events]
             out.append(check(lab, SRC_SIM, "tip amplitude: exact shooting (events: " + ", ".join(kinds) + ")",
                              A, A_sh, 1e-6))
     out.append(claim(f"{name} (a) summary", SRC_SIM, "HB-15 (tanh 1e-4 m/s) vs simulation, worst difference",
                      worst_hb < 0.015, note=f"HB-15 {worst_hb:.2%}, Richardson {worst_rich:.2%}"))
     # the peak of the curve against the Den Hartog peak
-    wp, Ap, curv = parabola_top(r.omega, r.response * scale)
+    _, _, curv = parabola_top(r.omega, r.response * scale)
+    wp, Ap = r.peak()              # the maximum located along the branch (AFCResult.peak)
+    Ap *= scale
     opt = minimize_scalar(lambda w: -den_hartog_damped(mode.m1, mode.k1, mode.c1, F, P0, w),
                           bounds=(0.97 * mode.omega1, 1.03 * mode.omega1), method="bounded",
                           options={"xatol": 1e-6 * mode.omega1})
@@ -433,7 +445,7 @@ def rod_shooting_checks(doc: dict, r_hb) -> list:
         res, T = simulate_at(doc, w, 150)
         A, _ = rod_sim_amplitude(res, T)
         out.append(check(f"{name} z = {w / w1:.5f}", SRC_SIM, f"tip amplitude: shooting curve, {what}",
-                         A, half_range(orb.t, orb.x[p.f][i_tip]), 1e-6))
+                         A, half_range(orb.t, orb.x[p.f][i_tip], [e.t for e in orb.events]), 1e-6))
     wp, Ap, _ = parabola_top(r.omega, r.response * scale)
     wh, Ah, _ = parabola_top(r_hb.omega, r_hb.response * scale)
     out.append(check(name, "HB-15 curve (tolerance of (a): 1.5 %)", "peak tip amplitude of the shooting curve",
@@ -526,8 +538,8 @@ def impact_1dof_row(ks: float, harmonics: int, sdof_range) -> dict:
     k1 = int(np.argmax(r1.response))
     om = impact_omitted(st, mode, ja, jt, sm1, hb1, r1.states[k1], float(r1.omega[k1]), ks,
                         doc["force"][0]["amplitude"])
-    wp, Fp, _ = parabola_top(r.omega, r.response)
-    wp1, Fp1, _ = parabola_top(r1.omega, r1.response)
+    wp, Fp = r.peak()              # the maxima located along the branches (AFCResult.peak)
+    wp1, Fp1 = r1.peak()
     return {"ks": ks, "ratio": ks / (mode.k1 * mode.share), "fe": (wp, Fp), "sdof": (wp1, Fp1), "completed":
             bool(r.completed and r1.completed), **om}
 

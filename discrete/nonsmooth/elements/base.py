@@ -235,6 +235,20 @@ class Element:
     smooth_law = True
     """Whether :meth:`smooth_force` exists (harmonic balance can use the element)."""
 
+    def sampled_exactly(self, s, sd, eps: float) -> bool:
+        """Whether the smooth law, on one orbit sampled at s, s' (equidistant, one period), is a polynomial
+        of degree <= 3 in (s, s') between and at the samples -- then harmonic balance's AFT on 4 H + 2 or
+        more samples projects it exactly and the dense grid of a rough law is not needed (a smooth law:
+        True; a discontinuous or kinked one: False unless it says otherwise)."""
+        return self.smoothness == 2
+
+    def piecewise_law(self):
+        """The smooth law as a piecewise-affine function of (s, s') with breaks in s
+        (:class:`PiecewiseAffineLaw`: ``F = a_p + b_p s + c_p s'`` between the
+        breaks), which harmonic balance integrates exactly over the crossings; None (default): the law is
+        sampled (AFT)."""
+        return None
+
     n_memory = 0
     """Internal states of the regularised law (friction's rest memory)."""
 
@@ -291,3 +305,29 @@ class StepLaw:
     def finish(self, p: float) -> list:
         """[(rank, event kind)] of the step (rank orders the kinds of events of one step)."""
         return []
+
+
+@dataclass(frozen=True)
+class PiecewiseAffineLaw:
+    """``F = a[p] + b[p] s + c[p] s'`` for ``breaks[p-1] < s < breaks[p]`` (breaks increasing, finite;
+    len(a) = len(b) = len(c) = len(breaks) + 1)."""
+
+    breaks: tuple
+    a: tuple
+    b: tuple
+    c: tuple
+
+    def __post_init__(self):
+        k = len(self.breaks)
+        if not (len(self.a) == len(self.b) == len(self.c) == k + 1):
+            raise ValueError("a piecewise-affine law needs one (a, b, c) per piece (breaks + 1)")
+        if k and not np.all(np.diff(self.breaks) > 0):
+            raise ValueError("the breaks of a piecewise-affine law must increase strictly")
+
+    def piece(self, s):
+        return np.searchsorted(np.asarray(self.breaks, float), s, side="right")
+
+    def force(self, s, sd):
+        p = self.piece(s)
+        a, b, c = (np.asarray(x, float)[p] for x in (self.a, self.b, self.c))
+        return a + b * s + c * sd

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, Linearisation, StepLaw
+from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
 @dataclass
@@ -110,6 +110,23 @@ class Contact(Element):
         """The piecewise-linear law itself (harmonic balance: AFT handles the switch)."""
         d, on = self._penetration(np.asarray(s, float))
         return -(self.k * d + self.c * sd * on), -self.k * on, -self.c * on
+
+    def piecewise_law(self):
+        """-k (s - bound) - c s' beyond each finite bound, 0 inside (the dashpot makes it jump at a
+        crossing with s' != 0)."""
+        k, c = self.k, self.c
+        breaks, a, b, cc = [], [], [], []
+        if math.isfinite(self.lower):
+            breaks.append(self.lower)
+            a.append(k * self.lower), b.append(-k), cc.append(-c)
+        a.append(0.0), b.append(0.0), cc.append(0.0)
+        if math.isfinite(self.upper):
+            if breaks and self.upper == self.lower:       # zero clearance: one break, contact on both sides
+                a.pop(), b.pop(), cc.pop()
+            else:
+                breaks.append(self.upper)
+            a.append(k * self.upper), b.append(-k), cc.append(-c)
+        return PiecewiseAffineLaw(tuple(breaks), tuple(a), tuple(b), tuple(cc))
 
     def regularised_force(self, s, sd, t, memory, settings):
         d, on = self._penetration(np.asarray(s, float))

@@ -155,6 +155,20 @@ class Friction(Element):
             dF = dF - 3 * self.cubic * w * w
         return F, np.zeros_like(s), dF
 
+    def sampled_exactly(self, s, sd, eps):
+        """Saturated: the slip velocity w keeps one sign with |w| >= 20 eps all along the orbit (the
+        samples, less the largest step between neighbouring samples), so
+        tanh(w / eps) = +-1 in double precision and the law is the cubic polynomial -+a0 - a1 w -+ a2 w^2
+        - a3 w^3 (a clutch slipping one way, seed 002)."""
+        w = np.asarray(sd, float) - self.surface_velocity
+        if w.size < 3:
+            return False
+        lo, hi = float(w.min()), float(w.max())
+        # the dip between samples is <= h^2 max|w"| / 8 <= (h H / 8) h max|w'| (Bernstein) -- a fraction of
+        # the largest step for N >= 8 H samples
+        step = float(np.max(np.abs(np.diff(w))))
+        return lo - step >= 20.0 * eps or hi + step <= -20.0 * eps
+
     n_memory = 1
 
     def regularised_force(self, s, sd, t, memory, settings):

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, Linearisation, StepLaw
+from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
 @dataclass
@@ -120,6 +120,15 @@ class Gap(Element):
         lo = (s < self.lower).astype(float)
         F = -self.k * ((s - self.upper) * up + (s - self.lower) * lo)
         return F, -self.k * (up + lo), z
+
+    def piecewise_law(self):
+        """The exact law (11.1): -k (s - lower) below, 0 inside, -k (s - upper) above (None: arctan law)."""
+        if self.law != "exact":
+            return None
+        k, lo, up = self.k, self.lower, self.upper
+        if lo == up:
+            return PiecewiseAffineLaw((up,), (k * lo, k * up), (-k, -k), (0.0, 0.0))
+        return PiecewiseAffineLaw((lo, up), (k * lo, 0.0, k * up), (-k, 0.0, -k), (0.0, 0.0, 0.0))
 
     def regularised_force(self, s, sd, t, memory, settings):
         F = 0.0

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, Linearisation
+from .base import Element, Linearisation, PiecewiseAffineLaw
 from .gap import ClearanceSpringStep
 
 
@@ -75,6 +75,14 @@ class OneSided(Element):
         d = s - self.s_open
         on = (self.side * d > 0).astype(float)
         return -self.k * d * on, -self.k * on, np.zeros_like(s)
+
+    def piecewise_law(self):
+        """-k (s - s_open) on the engaged side of s_open, 0 on the other."""
+        k, s0 = self.k, self.s_open
+        on = (k * s0, -k, 0.0)
+        off = (0.0, 0.0, 0.0)
+        lo, hi = (off, on) if self.side == 1 else (on, off)
+        return PiecewiseAffineLaw((s0,), (lo[0], hi[0]), (lo[1], hi[1]), (lo[2], hi[2]))
 
     def regularised_force(self, s, sd, t, memory, settings):
         F = 0.0

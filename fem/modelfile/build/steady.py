@@ -11,4 +11,6 @@ def steady_settings(t) -> SteadySettings:
                           stability=t.stability, ds=t.ds, ds_max=t.ds_max, ds_min=t.ds_min, max_steps=t.max_steps,
                           steps_per_period=t.steps_per_period, response_body=r.body, response_element=r.element,
                           measure=r.measure, scale=r.scale, start=t.start,
-                          start_periods=t.start_periods, condense=t.condense)
+                          start_periods=t.start_periods, kinks=t.kinks, truncation_tol=t.truncation_tol,
+                          adaptive=t.adaptive, max_harmonics=t.max_harmonics, bifurcations=t.bifurcations,
+                          switch_branches=t.switch_branches, condense=t.condense)

@@ -31,6 +31,8 @@ from .rotor import (CampbellTable, CriticalMapTable, RotorAnalysis, RotorTable, 
 from .simulation import Constants, Initial, Reduction, Simulation
 from .steady import Steady, Sweep
 from .superelement import SuperElement
+from .train import (CouplingTable, MeshTable, TrainAnalysis, TrainBodyTable, TrainDriverTable, TrainForced,
+                    TrainForceTable, TrainParametric, TrainReduction, TrainShaftTable, TrainTable)
 
 
 def _array(item):
@@ -223,7 +225,56 @@ class RotorFile(ModelFileBase):
     """[[output]]: named outputs (default: the section loads at the key stations, every bearing's reaction)."""
 
 
-KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile}
+class TrainFile(ModelFileBase):
+    """A geared train: named FE shafts and rotors, bodies, gear meshes and couplings (docs/geared.md)."""
+
+    train: TrainTable = TrainTable()
+    """[train]: speed reference and operating speed."""
+    shaft: _array(TrainShaftTable)
+    """[[shaft]]: named shafts (FE tables or a rotor table nested)."""
+    body: _array(TrainBodyTable)
+    """[[body]]: rigid bodies turning about x."""
+    mesh: _array(MeshTable)
+    """[[mesh]]: gear pairs."""
+    coupling: _array(CouplingTable)
+    """[[coupling]]: couplings (springs, dampers, backlash, slip torque)."""
+    driver: _array(TrainDriverTable)
+    """[[driver]]: prescribed motions."""
+    force: _array(TrainForceTable)
+    """[[force]]: loads (constant, harmonic, torque ripple of an order)."""
+    analysis: TrainAnalysis | None = None
+    """[analysis]: the default command and the modal speed."""
+    campbell: CampbellTable | None = None
+    """[campbell]: Campbell diagram over the reference speed (drivefem campbell)."""
+    forced: TrainForced | None = None
+    """[forced]: linear response over speed to transmission error and torque ripple (drivefem forced)."""
+    parametric: TrainParametric | None = None
+    """[parametric]: Floquet chart of the mesh-stiffness variation (drivefem parametric)."""
+    reduction: TrainReduction | None = None
+    """[reduction]: Craig-Bampton per shaft for the time simulation and the steady states."""
+    simulation: Simulation | None = None
+    """[simulation]: time integration (drivefem simulate)."""
+    constants: Constants = Constants()
+    """[constants]: g."""
+    steady: Steady | None = None
+    """[steady]: nonlinear amplitude-frequency curve (drivefem forced)."""
+    sweep: Sweep | None = None
+    """[sweep]: parameter map (drivefem sweep)."""
+
+    @model_validator(mode="after")
+    def _members(self):
+        if not self.shaft and not self.body:
+            rule("shaft", [], "at least one [[shaft]] or [[body]]")
+        if self.steady is not None and self.forced is not None:
+            rule("forced", "given", "either [forced] (linear response over speed) or [steady] (the nonlinear "
+                 "curve), the two meanings of drivefem forced")
+        return self
+
+
+KINDS = {"fe": FEFile, "lumped": LumpedFile, "hybrid": HybridFile, "drive": DriveFile, "rotor": RotorFile,
+         "train": TrainFile}
+TRAIN_MARKERS = ("train", "shaft", "mesh", "coupling")
+"""Top-level tables of a train file (no other kind has them)."""
 HYBRID_MARKERS = tuple(dict.fromkeys(("body", "driver", "spring", "damper", *ELEMENT_TABLES, "force",
                                       "distributed_friction", "reduction", "initial", "simulation", "steady",
                                       "sweep", "superelement")))
@@ -233,6 +284,8 @@ element registry (a new element needs no entry here), and the time/steady-state 
 
 def detect_kind(doc: dict) -> str:
     """The kind of a parsed model file, from the tables it has (decided once)."""
+    if any(k in doc for k in TRAIN_MARKERS):
+        return "train"
     if "rotor" in doc:
         return "rotor"
     if "drive" in doc:
@@ -242,7 +295,8 @@ def detect_kind(doc: dict) -> str:
     if "body" in doc or "driver" in doc:
         return "lumped"
     raise ModelError("model file", "segment", None, "at least one [[segment]] (FE or hybrid model), [[body]] "
-                     "(lumped model), a [drive] table (drive of regular structure) or a [rotor] table (rotor on bearings)")
+                     "(lumped model), a [drive] table (drive of regular structure), a [rotor] table (rotor on bearings) "
+                     "or [[shaft]]/[[mesh]] tables (geared train)")
 
 
 #: where a top-level key belongs, for the error of a key given in a file of another kind
@@ -270,4 +324,21 @@ HINTS = {
               "material": "in a rotor file the shaft material is [rotor.material]",
               "segment": "in a rotor file the shaft pieces are [[rotor.segment]]",
               "support": "in a rotor file rigid supports are [[rotor.support]]"},
+    "train": {**{k: "not a table of train files (a train file has [train], [[shaft]], [[body]], [[mesh]], "
+                 "[[coupling]], [[driver]], [[force]], [analysis], [campbell], [forced], [parametric], [reduction], "
+                 "[simulation], [constants], [steady], [sweep] and title)" for k in OTHER_KIND},
+              "segment": "in a train file the FE segments belong to a shaft: [[shaft.segment]]",
+              "material": "in a train file the material belongs to a shaft: [shaft.material]",
+              "model": "in a train file the FE settings belong to a shaft: [shaft.model]",
+              "support": "in a train file supports belong to a shaft: [[shaft.support]]",
+              "point": "in a train file point attachments belong to a shaft: [[shaft.point]]",
+              "rotor": "in a train file a rotor is a shaft: [[shaft]] with [shaft.rotor]",
+              "gear": "in a train file gears are [[mesh]] tables (with stiffness, backlash, ...)",
+              "gap": "in a train file backlash is a key of [[mesh]] or [[coupling]] (backlash = ..)",
+              "friction": "in a train file a slipping joint is a [[coupling]] with slip_torque = ..",
+              **{k: "not a table of train files" for k in ("load", "base_motion", "response", "damping", "initial",
+                                                             "distributed_friction", "spring", "damper", "one_sided",
+                                                             "impact", "cubic_spring", "contact", "motor",
+                                                             "unbalance", "unbalance_response", "run_up", "rub",
+                                                             "drive")}},
 }

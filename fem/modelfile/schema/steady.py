@@ -5,7 +5,7 @@ from typing import Annotated, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import SWEPT, Count, Integer, Positive, Table, rule
+from .base import SWEPT, Count, Integer, Number, Positive, Table, rule
 
 
 class ResponseMeasure(Table):
@@ -48,7 +48,8 @@ class Steady(Table):
     subharmonic: Integer(ge=1, le=20) = 1
     """Orbits of period subharmonic * 2 pi / omega."""
     samples: Count | None = None
-    """HB: AFT time samples per period (default max(64, 8 H + 4); at least 4 H + 2)."""
+    """HB: AFT time samples per period (at least 4 H + 2; default max(64, 8 H + 4), with sampled friction
+    max(1024, 16 H), with sampled kinks max(256, 16 H))."""
     regularisation: Positive["m/s", "rad/s"] = 1e-3
     """HB: friction sign(w) ~ tanh(w / regularisation)."""
     response: ResponseMeasure = ResponseMeasure()
@@ -77,6 +78,22 @@ class Steady(Table):
     """HB: solve on the nonlinear elements' DOFs only, the linear rest condensed exactly per harmonic
     (its receptance factorised once per frequency); "auto" where it pays (at most half of the DOFs
     nonlinear and >= 120 HB unknowns), "yes" always (an error if the linear rest is not regular), "no" never."""
+    kinks: Literal["exact", "sampled"] = "exact"
+    """HB: piecewise-linear laws (gaps, stops, one-sided springs) integrated "exact"ly between their
+    crossings, or "sampled" at the AFT samples (the kink then makes the branch zig-zag near resonance)."""
+    truncation_tol: Number(gt=0, lt=1)["1"] = 1e-3
+    """HB: tolerance of the relative truncation estimate of every point and of the frequency change of
+    every fold and bifurcation with more harmonics (docs/steady.md); the run says where it is exceeded."""
+    adaptive: bool = False
+    """HB: raise the harmonics where the truncation estimate exceeds truncation_tol (up to max_harmonics)."""
+    max_harmonics: Count | None = None
+    """HB, adaptive: the largest number of harmonics (default 4 x harmonics)."""
+    bifurcations: bool = True
+    """Classify and locate folds, branch points, period doublings and Neimark-Sacker points (test
+    functions of the Floquet multipliers and of the continuation's Jacobian)."""
+    switch_branches: bool = False
+    """HB: also continue the period-doubled branch of every period doubling and the other branch of every
+    branch point (reported as secondary branches)."""
 
     @model_validator(mode="after")
     def _range(self):
@@ -93,6 +110,14 @@ class Steady(Table):
             rule("backbone", self.backbone, "false with subharmonic > 1 (the mode of the period-1 response)")
         if self.samples is not None and self.samples < 4 * self.harmonics + 2:
             rule("samples", self.samples, f"at least 4 harmonics + 2 = {4 * self.harmonics + 2}")
+        if self.max_harmonics is not None and self.max_harmonics < self.harmonics:
+            rule("max_harmonics", self.max_harmonics, f"at least harmonics = {self.harmonics}")
+        if self.switch_branches and not self.stability:
+            rule("switch_branches", True, "stability = true (the bifurcations are found from the Floquet multipliers)")
+        if self.method != "hb":
+            for key in ("adaptive", "switch_branches"):
+                if getattr(self, key):
+                    rule(key, True, 'method = "hb" (an HB option)')
         return self
 
     @property

@@ -6,20 +6,16 @@ from pathlib import Path
 import numpy as np
 
 
-def plot_afc(result, path, ax=None, label=None, title: str = "") -> None:
-    """PNG of the curve: stable branch solid, unstable branch dashed in the same colour, folds as
-    open circles, the backbone (nonlinear mode) dash-dotted.  The legend says it in words
-    ("harmonic balance, 7 harmonics: stable branch"); the axes carry quantity and unit (the
-    excitation frequency in rad/s, or as omega / omega_ref when the file gives omega_ref)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+MARKERS = {"fold": ("o", "fold (turning point)"), "branch_point": ("s", "branch point"),
+           "period_doubling": ("^", "period doubling"), "neimark_sacker": ("D", "Neimark-Sacker")}
 
-    from .quantities import measure_label, method_text
 
-    own = ax is None
-    if own:
-        fig, ax = plt.subplots(figsize=(7.8, 4.8))
+def _curve(ax, result, label=None, color=None):
+    """The branch: stable parts solid, unstable dashed in the same colour, its bifurcations marked by
+    type; the legend in words ("harmonic balance, 7 harmonics: stable branch").  Returns the colour
+    and the bifurcation kinds drawn."""
+    from .quantities import method_text
+
     x = result.z if result.omega_ref else result.omega
     y = result.response
     st = np.asarray(result.stable, bool)
@@ -30,30 +26,82 @@ def plot_afc(result, path, ax=None, label=None, title: str = "") -> None:
         if st[i] != st[i - 1]:
             yu[i - 1 if st[i - 1] else i] = y[i - 1 if st[i - 1] else i]
     name = label or method_text(result.method)
-    line, = ax.plot(x, ys, "-", lw=1.6, label=f"{name}: stable branch" if not label else label)
+    line, = ax.plot(x, ys, "-", lw=1.6, label=f"{name}: stable branch" if not label else label, color=color)
+    c = line.get_color()
     if np.any(~st):
-        ax.plot(x, yu, "--", color=line.get_color(), lw=1.2, alpha=0.9,
-                label=f"{name}: unstable branch" if not label else "_nolegend_")
-    for k, f in enumerate(result.folds):
-        fx = f["omega"] / result.omega_ref if result.omega_ref else f["omega"]
-        ax.plot([fx], [f["response"]], "o", ms=4, color=line.get_color(), mfc="none",
-                label="fold (turning point)" if k == 0 and not label else "_nolegend_")
+        ax.plot(x, yu, "--", color=c, lw=1.2, alpha=0.9, label=f"{name}: unstable branch" if not label else "_nolegend_")
+    bifs = getattr(result, "bifurcations", None) or [
+        type("F", (), {"kind": "fold", "omega": f["omega"], "response": f["response"]}) for f in result.folds]
+    for b in bifs:
+        bx = b.omega / result.omega_ref if result.omega_ref else b.omega
+        ax.plot([bx], [b.response], MARKERS[b.kind][0], ms=5, color=c, mfc="none", mew=1.3)
+    return c, {b.kind for b in bifs}
+
+
+def plot_afc(result, path, ax=None, label=None, title: str | None = None) -> None:
+    """PNG of the curve: stable parts solid, unstable parts dashed, bifurcations marked by type (fold o,
+    branch point square, period doubling triangle, Neimark-Sacker diamond), secondary (switched) branches
+    in their own colours, the backbone (nonlinear mode) dash-dotted; below, the HB truncation estimate
+    per point against its tolerance.  The axes carry quantity and unit (the excitation frequency in
+    rad/s, or as omega / omega_ref when the file gives omega_ref)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .quantities import measure_label, method_text
+
+    own = ax is None
+    est = getattr(result, "truncation", None)
+    strip = own and est is not None and np.size(est) > 0
+    if own:
+        if strip:
+            fig, (ax, ax2) = plt.subplots(2, 1, figsize=(10.0, 6.0), sharex=True,
+                                          gridspec_kw={"height_ratios": [3.2, 1.0]})
+        else:
+            fig, ax = plt.subplots(figsize=(7.8, 4.8))
+    _, kinds = _curve(ax, result, label)
+    for sec in getattr(result, "secondary", []) or []:
+        _, k2 = _curve(ax, sec, label=sec.origin.split(", back on")[0].replace(" rad/s", ""), color=None)
+        kinds |= k2
     bb = (result.extra or {}).get("backbone")
     if bb and bb.get("response"):
         bx = np.asarray(bb["omega_rad_s"]) / (result.omega_ref or 1.0)
         ax.plot(bx, bb["response"], "-.", color="0.35", lw=1.2,
                 label=f"backbone: {method_text(bb['method'])}")
+    if not label:
+        for kind in ("fold", "branch_point", "period_doubling", "neimark_sacker"):
+            if kind in kinds:
+                ax.plot([], [], MARKERS[kind][0], color="0.3", mfc="none", label=MARKERS[kind][1])
     if own:
         ref = result.omega_ref
-        ax.set_xlabel(f"excitation frequency omega / omega_ref [-] (omega_ref = {ref:.6g} rad/s)" if ref
-                      else "excitation frequency omega [rad/s]")
+        xlabel = (f"excitation frequency omega / omega_ref [-] (omega_ref = {ref:.6g} rad/s)" if ref
+                  else "excitation frequency omega [rad/s]")
         q, u = measure_label(result.response_label)
         ax.set_ylabel(f"{q} [{u}]", fontsize=8.5)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)   # off the curves
         sub = "amplitude-frequency curve (continuation)" + ("" if getattr(result, "completed", True) else
                                                               ": stopped early, partial branch")
         ax.set_title((title + "\n" if title else "") + sub, fontsize=9)
+        if strip:
+            x = result.z if result.omega_ref else result.omega
+            e = np.asarray(est, float)
+            pos = e[e > 0]
+            floor = max(float(pos.min()) / 3 if pos.size else 1e-9, (result.truncation_tol or 1e-3) * 1e-6)
+            ax2.semilogy(x, np.maximum(e, floor), ".", ms=3, color="0.25",
+                         label="truncation estimate (0 shown at the floor)")
+            top = max(float(e.max()) if e.size else 0.0, result.truncation_tol or 0.0)
+            ax2.set_ylim(floor / 2, top * 4)
+            if result.truncation_tol:
+                ax2.axhline(result.truncation_tol, color="tab:red", lw=1.0, ls="--",
+                            label=f"tolerance {result.truncation_tol:g}")
+            ax2.set_ylabel("truncation estimate [-]", fontsize=8)
+            ax2.set_xlabel(xlabel)
+            ax2.grid(alpha=0.3, which="both")
+            ax2.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)   # off the points
+            ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)    # off the curves
+        else:
+            ax.set_xlabel(xlabel)
+            ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)   # off the curves
         fig.tight_layout()
         Path(path).parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=120, bbox_inches="tight")
