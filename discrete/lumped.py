@@ -25,6 +25,23 @@ from .linear_system import LinearSystem, check_finite
 GROUND = "ground"
 
 
+def rigid_motions(G: np.ndarray) -> np.ndarray:
+    """An orthonormal basis of the rigid-body motions: the motions x that no spring resists, G x = 0, where the
+    rows of ``G`` are the deformation gradients g (r_b x_b - r_a x_a = g . x) of the springs with k > 0.
+    K = G^T diag(k) G has the same null space, but deciding it from K's eigenvalues ties the answer to the
+    spread of the stiffnesses and masses (a spring k = 1 beside k = 1e10 is a mode, not a rigid motion); G
+    holds only the geometry (the ratios), scaled here to unit rows and columns before the SVD."""
+    n = G.shape[1]
+    if G.shape[0] == 0:
+        return np.eye(n)
+    rows = np.linalg.norm(G, axis=1)
+    G = G[rows > 0] / rows[rows > 0, None]
+    cols = np.linalg.norm(G, axis=0)
+    d = np.where(cols > 0, 1.0 / np.where(cols > 0, cols, 1.0), 1.0)
+    ns = sla.null_space(G * d[None, :]) if G.shape[0] else np.eye(n)
+    return sla.orth(ns * d[:, None]) if ns.shape[1] else np.zeros((n, 0))
+
+
 @dataclass
 class Body:
     name: str
@@ -39,8 +56,11 @@ class Body:
         if not isinstance(self.name, str) or not self.name:
             raise ModelError("[[body]]", "name", self.name, "a non-empty name other than 'ground'")
         self.inertia = checks.positive(where, "inertia", self.inertia, "mass (kg) or moment of inertia (kg m^2)")
-        for key in ("inertia_rate", "reactive", "x0", "v0"):
+        for key in ("inertia_rate", "x0", "v0"):
             setattr(self, key, checks.finite(where, key, getattr(self, key)))
+        self.reactive = checks.bounded(where, "reactive", self.reactive, (">=", 0.0), ("<=", 1.0),
+                                       "reactive coefficient eps: 0 a mass change at zero relative velocity, 1 the "
+                                       "momentum form")
 
 
 @dataclass
@@ -205,17 +225,22 @@ class LumpedModel:
             T[idx[n]] = row(n)
         return indep, T
 
+    def _gradient(self, ln: Link) -> np.ndarray:
+        """g with r_b x_b - r_a x_a = g . x over all bodies and drivers."""
+        idx = {n: i for i, n in enumerate(self.names)}
+        g = np.zeros(len(idx))
+        (a, b), (ra, rb) = ln.between, ln.ratios
+        if a != GROUND:
+            g[idx[a]] -= ra
+        if b != GROUND:
+            g[idx[b]] += rb
+        return g
+
     def _link_matrix(self, links: list[Link], use_psi: bool = False) -> np.ndarray:
         names = self.names
-        idx = {n: i for i, n in enumerate(names)}
         A = np.zeros((len(names), len(names)))
         for ln in links:
-            g = np.zeros(len(names))
-            (a, b), (ra, rb) = ln.between, ln.ratios
-            if a != GROUND:
-                g[idx[a]] -= ra
-            if b != GROUND:
-                g[idx[b]] += rb
+            g = self._gradient(ln)
             coef = ln.value * (2 * ln.psi / (4 * math.pi) if use_psi else 1.0)
             A += coef * np.outer(g, g)
         return A
@@ -234,7 +259,8 @@ class LumpedModel:
         free = [j for j in range(len(indep)) if j not in set(constrained)]
         rigid = np.zeros((len(indep), 0))
         if free:
-            ns = sla.null_space(K[np.ix_(free, free)], rcond=1e-10)
+            G = np.array([self._gradient(ln) for ln in self.springs if ln.value > 0]).reshape(-1, len(self.names))
+            ns = rigid_motions((G @ T)[:, free])
             rigid = np.zeros((len(indep), ns.shape[1]))
             rigid[free] = ns
         return LinearSystem(M=sp.csr_matrix(M), K=sp.csr_matrix(K), C=sp.csr_matrix(C), H=sp.csr_matrix(H),

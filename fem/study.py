@@ -361,6 +361,8 @@ class Study:
         if self.kind == "lumped" and getattr(self.doc, "motor", None):
             system = self._with_motors(system)
         spec = build_linear.forced_spec(self.doc, system)
+        budget.check_response(spec.omegas.size, system.n_dofs, len(spec.outputs),
+                              spec.harmonics if spec.period is not None else None)
         if spec.period is not None:
             from discrete.linear.periodic_forced import periodic_forced
 
@@ -423,6 +425,7 @@ class Study:
         settings = self.simulation_settings()
         if progress is not None:
             settings["progress"] = progress
+        settings.setdefault("max_evaluations", budget.numeric_evaluations())
         t_end, method = settings["t_end"], settings["method"]
         spp = settings.get("steps_per_period", 12)
         if self.kind == "train":
@@ -450,7 +453,8 @@ class Study:
                                  "[[driver]] or [initial] velocity for a simulation")
             self.damping_report = self.compiled.damping_report
             if method != "moreau":
-                budget.check_time_integration(t_end, self.compiled.problem.omega_max, spp, method)
+                budget.check_time_integration(t_end, self.compiled.problem.rate_max, spp, method,
+                                              self.compiled.problem.nz)
             return run(m, settings, compiled=self.compiled)
         self._need("lumped", what="drivefem simulate")
         from discrete.nonsmooth import simulate_spec
@@ -459,7 +463,7 @@ class Study:
         self.damping_report = spec.damping_report
         problem = spec.problem() if method != "moreau" else None
         if problem is not None:
-            budget.check_time_integration(t_end, problem.omega_max, spp, method)
+            budget.check_time_integration(t_end, problem.rate_max, spp, method, problem.nz)
         return simulate_spec(spec, t_end, method, settings, problem=problem)
 
     def run_up(self, progress=None):

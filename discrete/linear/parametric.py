@@ -73,7 +73,7 @@ import scipy.optimize as so
 import scipy.sparse as sp
 
 from ..linalg.expm import expm_batch
-from ..errors import ModelError
+from ..errors import ModelError, SolverError
 from ..linalg.blas import single_threaded_blas
 from ..linear_system import LinearSystem
 from .harmonic import Damping
@@ -517,10 +517,14 @@ class ParametricProblem:
         Phi = np.empty((P, n2, n2))
         err = np.empty(P)
         steps = np.empty(P, dtype=int)
-        # initial steps: rotation of the fastest mode (raised by the pulsation) <= 1 rad per step
+        # initial steps: rotation of the fastest mode (raised by the pulsation) <= 1 rad per step, and at
+        # least 8 steps per period of the highest harmonic of the pulsation (a coarser first grid can look
+        # converged to the doubling test, whose error does not yet fall at the sixth-order rate)
         wmax = self.omega_modes.max() * math.sqrt(1.0 + (eps.max() if eps.size else 0.0))
-        N0 = np.maximum(_MIN_STEPS, np.ceil(2 * math.pi * wmax / omega)).astype(int)
-        N0 = np.minimum(2 ** np.ceil(np.log2(N0)).astype(int), _MAX_STEPS // 2)
+        hmax = max([h for _, h, _ in self.parts_K + self.parts_M], default=1)
+        with np.errstate(over="ignore"):
+            N0 = np.maximum(max(_MIN_STEPS, 8 * hmax), np.ceil(2 * math.pi * wmax / omega))
+        N0 = np.minimum(2 ** np.ceil(np.log2(np.minimum(N0, _MAX_STEPS))), _MAX_STEPS // 2).astype(int)
         chunk = max(1, _CHUNK_ELEMENTS // (32 * n2 * n2))
         for N in np.unique(N0):
             idx = np.flatnonzero(N0 == N)
@@ -529,6 +533,17 @@ class ParametricProblem:
                 Phi[sel], err[sel], steps[sel] = self._converged(eps[sel], omega[sel], int(N), tolerance)
                 if progress is not None:
                     progress(sel.size)
+        bad = ~np.all(np.isfinite(Phi), axis=(1, 2))
+        if np.any(bad):
+            k = int(np.flatnonzero(bad)[0])
+            rot = 2 * math.pi * wmax / omega[k]
+            raise UnresolvedMonodromy(
+                float(eps[k]), float(omega[k]),
+                f"{WHERE}: the monodromy matrix at eps = {eps[k]:.6g}, Omega = {omega[k]:.6g} rad/s overflowed "
+                f"({int(np.sum(bad))} of {P} points): with {int(steps[k])} steps (at most {_MAX_STEPS}) over one "
+                f"period 2 pi/Omega the integrator cannot resolve the motion -- the fastest mode turns {rot:.3g} rad "
+                f"in a period and the pulsation's highest harmonic is {hmax}; raise the start of the Omega range, "
+                "lower the depth or the harmonic")
         if P:
             self.worst_error = max(self.worst_error, float(err.max()))
         return Phi, err, steps
@@ -559,7 +574,8 @@ class ParametricProblem:
         h = 2 * math.pi / N
         block = max(1, min(N, _CHUNK_ELEMENTS // (P * n2 * n2)))
         Phi = None
-        with single_threaded_blas():
+        # an unresolved period can overflow: the product becomes non-finite, which monodromy() reports
+        with single_threaded_blas(), np.errstate(over="ignore", invalid="ignore"):
             for k0 in range(0, N, block):
                 ks = np.arange(k0, min(N, k0 + block))
                 A1, A2, A3 = (self.state_matrices((ks + c) * h, eps, omega) for c in _NODES)
@@ -603,6 +619,14 @@ class ParametricProblem:
         return rho, np.linalg.det(Phi + I), np.linalg.det(Phi - I)
 
 
+class UnresolvedMonodromy(SolverError):
+    """The monodromy at (``eps``, ``omega``) overflowed: one period cannot be resolved within the step limit."""
+
+    def __init__(self, eps: float, omega: float, message: str):
+        super().__init__(message)
+        self.eps, self.omega = eps, omega
+
+
 def _rigid_error(count):
     raise ModelError(WHERE, "supports", f"{count} rigid-body mode(s)",
                      "a system without rigid-body modes: hold a driver or ground the chain (parametric "
@@ -625,10 +649,11 @@ def _expm_batch(X: np.ndarray) -> np.ndarray:
     m = 0.5 * (a + d)
     s2 = 0.25 * (a - d) ** 2 + b * c
     r = np.sqrt(np.abs(s2))
-    ch = np.where(s2 >= 0, np.cosh(r), np.cos(r))
-    safe = np.where(r == 0, 1.0, r)
-    sh = np.where(r < 1e-4, 1.0 + s2 / 6.0 + s2 * s2 / 120.0, np.where(s2 >= 0, np.sinh(r), np.sin(r)) / safe)
-    em = np.exp(m)
+    with np.errstate(over="ignore", invalid="ignore"):      # r > 2 is replaced below
+        ch = np.where(s2 >= 0, np.cosh(r), np.cos(r))
+        safe = np.where(r == 0, 1.0, r)
+        sh = np.where(r < 1e-4, 1.0 + s2 / 6.0 + s2 * s2 / 120.0, np.where(s2 >= 0, np.sinh(r), np.sin(r)) / safe)
+        em = np.exp(m)
     E = np.empty_like(X)
     E[:, 0, 0] = em * (ch + sh * (a - m))
     E[:, 1, 1] = em * (ch + sh * (d - m))
@@ -848,7 +873,15 @@ def _threshold(prob: ParametricProblem, r, tol, search_minimum) -> DampingThresh
     est = 4 * zeta / kap if math.isfinite(kap) and kap > 0 else math.nan
     centre = 2 * w_r
     prob.worst_error = 0.0
-    e_c = _critical_depth(prob, centre, tol)
+    try:
+        e_c = _critical_depth(prob, centre, tol)
+    except UnresolvedMonodromy as exc:      # the depth search reached depths the integrator cannot resolve
+        return DampingThreshold(mode=r, natural_omega_rad_s=w_r, omega_centre_rad_s=centre, depth_at_centre=math.nan,
+                                omega_at_minimum_rad_s=centre, depth_minimum=math.nan, zeta=zeta, energy_estimate=est,
+                                max_error_estimate=prob.worst_error,
+                                note=f"not determined: stable up to the depths tried, and at eps = {exc.eps:.4g} "
+                                     f"(Omega = 2 omega_{r}) the monodromy overflows (one period not resolved within "
+                                     f"{_MAX_STEPS} steps)")
     note = ""
     w_min, e_min = centre, e_c
     if e_c == 0.0:
@@ -869,19 +902,24 @@ def _threshold(prob: ParametricProblem, r, tol, search_minimum) -> DampingThresh
 
         # coarse scan, then Brent around the best sample (the tip can be much sharper than the window)
         grid = centre + half * np.linspace(-1.0, 1.0, 17)
-        vals = _critical_depths_coarse(prob, grid, tol)
-        k = int(np.argmin(vals))
-        step = grid[1] - grid[0]
-        res = so.minimize_scalar(depth_at, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]),
-                                 method="bounded", options={"xatol": 1e-9 * centre})
-        cand = [(vals[k], grid[k])] + ([(res.fun, res.x)] if math.isfinite(res.fun) else [])
-        e_min, w_min = min(cand)
-        e_min, w_min = float(e_min), float(w_min)
-        if e_min > e_c:
-            e_min, w_min = e_c, centre
-        if k in (0, grid.size - 1) and abs(abs(w_min - centre) - half) < step:
-            note = (f"tongue tip at the edge of the search window 2 omega_r +- {half:.4g} rad/s: "
-                    "minimum not bracketed")
+        try:
+            vals = _critical_depths_coarse(prob, grid, tol)
+            k = int(np.argmin(vals))
+            step = grid[1] - grid[0]
+            res = so.minimize_scalar(depth_at, bounds=(grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]),
+                                     method="bounded", options={"xatol": 1e-9 * centre})
+        except UnresolvedMonodromy as exc:
+            note = (f"tongue tip not searched: at eps = {exc.eps:.4g}, Omega = {exc.omega:.6g} rad/s the monodromy "
+                    f"overflows (one period not resolved within {_MAX_STEPS} steps); the centre value stands")
+        else:
+            cand = [(vals[k], grid[k])] + ([(res.fun, res.x)] if math.isfinite(res.fun) else [])
+            e_min, w_min = min(cand)
+            e_min, w_min = float(e_min), float(w_min)
+            if e_min > e_c:
+                e_min, w_min = e_c, centre
+            if k in (0, grid.size - 1) and abs(abs(w_min - centre) - half) < step:
+                note = (f"tongue tip at the edge of the search window 2 omega_r +- {half:.4g} rad/s: "
+                        "minimum not bracketed")
     return DampingThreshold(mode=r, natural_omega_rad_s=w_r, omega_centre_rad_s=centre, depth_at_centre=e_c,
                             omega_at_minimum_rad_s=w_min, depth_minimum=e_min, zeta=zeta, energy_estimate=est,
                             max_error_estimate=prob.worst_error, note=note)

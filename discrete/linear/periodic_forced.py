@@ -25,9 +25,10 @@ import numpy as np
 from ..errors import ModelError
 from ..linear_system import LinearSystem
 from ..motion.fourier import FourierSeries
-from .harmonic import Damping, HarmonicResult, harmonic_response
+from .harmonic import Damping, HarmonicResult, harmonic_response, reliability_warnings
 
 WHERE = "periodic load"
+BLOCK = 1 << 21          # entries of one block of the matrix of exponentials (instants x harmonics)
 
 
 @dataclass
@@ -47,6 +48,7 @@ class PeriodicResponse:
     damping: str
     series_errors: list[dict] = field(default_factory=list)   # truncation / aliasing of each input series
     warnings: list[str] = field(default_factory=list)
+    error_estimate: np.ndarray | None = None  # (H + 1,) relative error of each harmonic's response (harmonic_response)
 
     @property
     def period(self) -> float:
@@ -57,17 +59,32 @@ class PeriodicResponse:
         return self.amplitudes.shape[0] - 1
 
     def __call__(self, t, derivative: int = 0) -> np.ndarray:
-        """q^(derivative)(t) at the outputs, shape (len(t), n_outputs)."""
+        """q^(derivative)(t) at the outputs, shape (len(t), n_outputs); evaluated in blocks of instants, so that
+        the matrix of exponentials stays below :data:`BLOCK` entries whatever the number of harmonics."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
         j = np.arange(self.harmonics + 1)
         w = j * self.omega_rad_s
-        E = np.exp(1j * np.multiply.outer(t, w)) * (1j * w) ** derivative
-        return (E @ self.amplitudes).real
+        fac = (1j * w) ** derivative
+        out = np.empty((t.size, self.amplitudes.shape[1]))
+        rows = max(1, BLOCK // w.size)
+        for a in range(0, t.size, rows):
+            E = np.exp(1j * np.multiply.outer(t[a:a + rows], w)) * fac
+            out[a:a + rows] = (E @ self.amplitudes).real
+        return out
 
     def peak(self, samples: int = 4096, derivative: int = 0) -> np.ndarray:
-        """max |q^(m)| over one period per output (sampled)."""
-        t = np.linspace(0.0, self.period, samples, endpoint=False)
-        return np.max(np.abs(self(t, derivative)), axis=0)
+        """max |q^(m)| over one period per output, on ``samples`` equally spaced instants: the sum
+        sum_j Q_j (i j w)^m e^{2 pi i j k / samples} is an inverse FFT (O(samples log samples) per output, exact
+        for samples > harmonics; the instants k period / samples of the direct sum)."""
+        H = self.harmonics
+        if samples <= H:
+            t = np.linspace(0.0, self.period, samples, endpoint=False)
+            return np.max(np.abs(self(t, derivative)), axis=0)
+        w = np.arange(H + 1) * self.omega_rad_s
+        spec = np.zeros((samples, self.amplitudes.shape[1]), dtype=complex)
+        spec[:H + 1] = self.amplitudes * ((1j * w) ** derivative)[:, None]
+        q = (samples * np.fft.ifft(spec, axis=0)).real
+        return np.max(np.abs(q), axis=0)
 
     def to_dict(self) -> dict:
         return {"omega_rad_s": self.omega_rad_s, "period": self.period, "harmonics": self.harmonics,
@@ -113,6 +130,7 @@ def periodic_response(system: LinearSystem, *, loads: list[PeriodicLoad] | tuple
     outputs = list(range(system.n_dofs)) if outputs is None else [int(i) for i in outputs]
     n_rigid = 0 if system.rigid_modes is None else system.rigid_modes.shape[1]
     Q = np.zeros((H + 1, len(outputs)), dtype=complex)
+    err = np.zeros(H + 1)
     method_name, damp_name = "", ""
 
     def add(coeffs: np.ndarray, **kw):
@@ -128,6 +146,8 @@ def periodic_response(system: LinearSystem, *, loads: list[PeriodicLoad] | tuple
                              "load would accelerate it without bound; give the load a zero mean)")
         res = harmonic_response(system, js * w0, damping=damping, outputs=outputs, method=method, n_modes=n_modes, **kw)
         Q[js] += res.response * c[js, None]
+        if res.error_estimate is not None:
+            err[js] = np.maximum(err[js], res.error_estimate)
         method_name, damp_name = res.method, res.damping
 
     for ld in loads:
@@ -139,7 +159,8 @@ def periodic_response(system: LinearSystem, *, loads: list[PeriodicLoad] | tuple
              "aliasing_error": s.aliasing_error, "scale": s.scale} for i, s in enumerate(series)]
     return PeriodicResponse(omega_rad_s=w0, amplitudes=Q, outputs=[system.label(i) for i in outputs],
                             method=f"Fourier superposition of {H} harmonics; {method_name}", damping=damp_name,
-                            series_errors=errs)
+                            series_errors=errs, error_estimate=err,
+                            warnings=reliability_warnings(np.arange(H + 1) * w0, err))
 
 
 @dataclass
@@ -195,5 +216,6 @@ def periodic_forced(system: LinearSystem, period: float, harmonics: int, *, shap
     H = res.harmonics
     return PeriodicForcedResult(omega_rad_s=np.arange(H + 1) * res.omega_rad_s, response=res.amplitudes,
                                 outputs=res.outputs, method=res.method, damping=res.damping,
-                                warnings=list(res.warnings), period=float(period), t=t, q=res(t),
+                                warnings=list(res.warnings), error_estimate=res.error_estimate,
+                                period=float(period), t=t, q=res(t),
                                 peak=res.peak(samples=max(8192, 32 * H)), series_errors=res.series_errors)

@@ -24,6 +24,9 @@ from ..errors import ModelError
 from .piecewise import PiecewiseLaw
 
 
+BLOCK = 1 << 21          # entries of one block of the phase matrix (instants x harmonics) of an evaluation
+
+
 @dataclass
 class FourierSeries:
     period: float
@@ -56,12 +59,19 @@ class FourierSeries:
         return np.hypot(self.cos, self.sin), np.arctan2(self.cos, self.sin)
 
     def __call__(self, t, derivative: int = 0):
+        """The series (or its ``derivative``) at the instants ``t``, summed in blocks of instants so that the
+        matrix of phases stays below :data:`BLOCK` entries whatever the number of harmonics."""
         t = np.asarray(t, dtype=float)
         j = np.arange(1, self.harmonics + 1)
-        ph = np.multiply.outer(t, j * self.omega)
         fac = (j * self.omega) ** derivative
         shift = derivative * math.pi / 2
-        val = (np.cos(ph + shift) * (fac * self.cos) + np.sin(ph + shift) * (fac * self.sin)).sum(axis=-1)
+        flat = t.reshape(-1)
+        val = np.empty(flat.size)
+        rows = max(1, BLOCK // max(1, j.size))
+        for a in range(0, flat.size, rows):
+            ph = np.multiply.outer(flat[a:a + rows], j * self.omega)
+            val[a:a + rows] = (np.cos(ph + shift) * (fac * self.cos) + np.sin(ph + shift) * (fac * self.sin)).sum(axis=-1)
+        val = val.reshape(t.shape)
         return val + (self.mean if derivative == 0 else 0.0)
 
     def to_dict(self) -> dict:

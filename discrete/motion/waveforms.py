@@ -66,8 +66,16 @@ class Waveform:
                            samples=0, max_error=0.0, rms_error=0.0, aliasing_error=0.0,
                            scale=abs(amplitude) * float(max(np.max(np.abs(self.left)), np.max(np.abs(self.right)))))
         N = check_points or max(4096, 16 * H)
-        sg = np.sort(np.concatenate([np.arange(N) / N, np.mod(self.s[:-1] - shift, 1.0)]))
-        err = fs(sg * period) - amplitude * self(sg + shift)
+        grid = np.arange(N) / N
+        knots = np.mod(self.s[:-1] - shift, 1.0)
+        if N > 2 * H:        # the series on the equally spaced instants k/N: an inverse FFT, O(N log N)
+            spec = np.zeros(N // 2 + 1, dtype=complex)
+            spec[0] = fs.mean * N
+            spec[1:H + 1] = 0.5 * N * (fs.cos - 1j * fs.sin)
+            on_grid = np.fft.irfft(spec, n=N)
+        else:
+            on_grid = fs(grid * period)
+        err = np.concatenate([on_grid - amplitude * self(grid + shift), fs(knots * period) - amplitude * self(knots + shift)])
         return FourierSeries(period=fs.period, mean=fs.mean, cos=fs.cos, sin=fs.sin, samples=0,
                              max_error=float(np.max(np.abs(err))), rms_error=float(np.sqrt(np.mean(err ** 2))),
                              aliasing_error=0.0, scale=fs.scale)

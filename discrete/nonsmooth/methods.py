@@ -9,7 +9,8 @@ from ..errors import ModelError
 from .problem import ProblemSpec
 
 METHODS = ("event", "moreau", "regularised")
-EVENT_KEYS = ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "energy", "output_step", "progress")
+EVENT_KEYS = ("max_events", "max_step", "steps_per_period", "rtol", "rest_tol", "energy", "output_step", "progress",
+              "max_evaluations")
 REGULARISED_KEYS = ("regularisation", "penalty", "memory_time", "rtol", "max_step")
 MOREAU_KEYS = ("dt", "theta", "tol", "max_iter", "max_events")
 

@@ -17,6 +17,8 @@ piece index of every programme law (a knot is a time event that resets its sub-s
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -235,6 +237,23 @@ class Problem:
         self.omega_max = max([self.omega_max] + [abs(w) for w in oms]
                              + [el.frequency() for el in self.elements]
                              + [src.max_frequency() for src in self.sources])
+        self.rate_max = max(self.omega_max, self._fastest_rate())
+
+    def _fastest_rate(self) -> float:
+        """The fastest rate (1/s) of the dissipative parts: the dampers (spectral radius of M^-1 C) and each
+        element's own dynamics on its coordinate's effective inertia 1/(g M^-1 g) (a motor's torque state,
+        :meth:`Element.rate`).  With ``omega_max`` it bounds the spectral radius of the pieces' state matrices,
+        whose steps are 2 pi / (steps_per_period * radius): the time scale the step budget counts."""
+        if not self.nf:
+            return 0.0
+        try:
+            rate = float(np.max(np.abs(np.linalg.eigvals(np.linalg.solve(self.M0, self.C))))) if np.any(self.C) else 0.0
+            for el, gf in zip(self.elements, self.gf):
+                if np.any(gf):
+                    rate = max(rate, el.rate(1.0 / float(gf @ np.linalg.solve(self.M0, gf))))
+        except (np.linalg.LinAlgError, ZeroDivisionError):
+            return 0.0
+        return rate if math.isfinite(rate) else math.inf
 
     # ------------------------------------------------------------------ basics
     def basis(self, t) -> np.ndarray:

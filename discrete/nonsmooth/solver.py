@@ -45,6 +45,7 @@ class Options:
     output_step: float | None = None   # extra output samples inside exact pieces (plots, CSV)
     contact_tol: float = 1e-9      # persistent-contact force counted as negative only below -contact_tol F_ref
     progress: object = None        # called with the time reached (a progress bar of the caller's)
+    max_evaluations: int | None = None  # right-hand sides of the numeric pieces before the run stops (None: any)
 
     def __post_init__(self):
         """The [simulation] keys' rules of the model file (method = "event"), checked once here."""
@@ -64,6 +65,8 @@ class Options:
                                                "relative tolerance of persistent-contact forces")
         if self.progress is not None and not callable(self.progress):
             raise ModelError(w, "progress", self.progress, "None or a callable taking the time reached")
+        self.max_evaluations = checks.optional(checks.integer, w, "max_evaluations", self.max_evaluations, 1,
+                                               "right-hand-side evaluations of the numeric pieces")
 
 
 class EventDrivenSolver:
@@ -277,7 +280,16 @@ class EventDrivenSolver:
                 cache["k"], cache["v"] = key, out
             return out
 
+        budget = None if self.o.max_evaluations is None else self.o.max_evaluations - acc.get("nfev", 0)
+        calls = [0]
+
         def fun(tt, y):
+            calls[0] += 1
+            if budget is not None and calls[0] > budget:     # a stiff law for the explicit integrator
+                raise SolverError(f"the numerically integrated pieces used their {self.o.max_evaluations} "
+                                  f"right-hand-side evaluations at t = {tt:.6g} (a law too stiff for the explicit "
+                                  "DOP853 steps: a huge coefficient, or a tiny inertia); the results up to the start "
+                                  "of this piece are kept; a deliberate longer run needs a larger DRIVEFEM_BUDGET")
             out = ev(tt, y)
             q, v = y[:nf, None], y[nf:2 * nf, None]
             e = exo(tt)[:, None]

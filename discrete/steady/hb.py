@@ -701,7 +701,7 @@ def _floquet_core(model, Xs, omegas, M, chunk_entries, split, cuts=None):
                 E = (a[:, 1::2] * a[:, 0::2] + b[:, 1::2] * c_[:, 0::2], a[:, 1::2] * b[:, 0::2] + b[:, 1::2] * d_[:, 0::2],
                      c_[:, 1::2] * a[:, 0::2] + d_[:, 1::2] * c_[:, 0::2], c_[:, 1::2] * b[:, 0::2] + d_[:, 1::2] * d_[:, 0::2])
             Mono = np.stack([np.stack([E[0][:, 0], E[1][:, 0]], -1), np.stack([E[2][:, 0], E[3][:, 0]], -1)], -2)
-            out[c0:c0 + P] = np.linalg.eigvals(Mono)
+            out[c0:c0 + P] = _multipliers(Mono)
             continue
         # the interval matrices depend on (h, dF_e/ds, dF_e/ds') only: piecewise-linear laws (contact on/off)
         # and saturated friction (tanh' = 0 while slipping) repeat them exactly -- exponentiate each once
@@ -722,7 +722,17 @@ def _floquet_core(model, Xs, omegas, M, chunk_entries, split, cuts=None):
             if E.shape[1] % 2:
                 E = np.concatenate([E, np.broadcast_to(np.eye(d), (E.shape[0], 1, d, d))], axis=1)
             E = E[:, 1::2] @ E[:, 0::2]
-        out[c0:c0 + P] = np.linalg.eigvals(E[:, 0])
+        out[c0:c0 + P] = _multipliers(E[:, 0])
+    return out
+
+
+def _multipliers(mono: np.ndarray) -> np.ndarray:
+    """Eigenvalues of a batch of monodromy matrices; NaN for one that overflowed (a period the midpoint rule
+    does not resolve: stability unknown, so the orbit is not reported stable and its max |mu| is null)."""
+    out = np.full(mono.shape[:-1], np.nan, complex)
+    ok = np.all(np.isfinite(mono), axis=(-2, -1))
+    if np.any(ok):
+        out[ok] = np.linalg.eigvals(mono[ok])
     return out
 
 
@@ -892,6 +902,9 @@ def backbone(model: HBModel, A: float, omega0: float, X0=None, tol=1e-12, maxit=
         s.C = C_save
 
 
+START_EVALUATIONS = 500_000     # right-hand sides of the time integration that starts HB (then a solver failure)
+
+
 def time_guess(model: HBModel, omega, periods: int = 60, y0=None):
     """Starting coefficients from time integration of the same (smooth/penalty) model: ``periods``
     forcing periods from rest (or y0) with DOP853, then the last period projected on the harmonics."""
@@ -900,7 +913,18 @@ def time_guess(model: HBModel, omega, periods: int = 60, y0=None):
     s = model.s
     n = s.n
     T = 2 * np.pi * model.nu / omega
-    fun = s.ode(omega)
+    ode = s.ode(omega)
+    calls = [0]
+
+    def fun(t, y):           # the stiffness at the amplitude reached is not known beforehand: count the work
+        calls[0] += 1
+        if calls[0] > START_EVALUATIONS:
+            raise SolverError(f"the time integration for the start used its {START_EVALUATIONS} right-hand-side "
+                              f"evaluations at t = {t:.6g} s of {periods} periods: the model is too stiff for "
+                              "DOP853 at the amplitude reached (a huge stiffness or nonlinear coefficient, a tiny "
+                              "inertia)")
+        return ode(t, y)
+
     y = np.zeros(2 * n) if y0 is None else np.asarray(y0, float)
     t1 = (periods - 1) * T
     sol = solve_ivp(fun, (0.0, t1), y, method="DOP853", rtol=1e-8, atol=1e-12, max_step=T / 32)

@@ -21,6 +21,22 @@ from .exit_codes import EXIT_INTERRUPTED
 from .progress import count_bar, progress_bar
 
 
+def count_option(args, attr: str, low: int, high: int, what: str) -> None:
+    """An integer option (``--modes``, ``--mode``, ``--workers``; a list for a repeatable one) in [low, high]
+    before any work starts: ModelError naming the option otherwise."""
+    values = getattr(args, attr, None)
+    for v in values if isinstance(values, list) else [values]:
+        if v is not None and not low <= v <= high:
+            raise ModelError("command line", "--" + attr, v, f"an integer from {low} to {high:.0f} ({what})")
+
+
+def max_workers() -> int:
+    """The most local sweep workers (processes) allowed: four per CPU."""
+    import os
+
+    return 4 * (os.cpu_count() or 1)
+
+
 def _outputs(args, command: str, **kinds) -> dict:
     """Everything checked before any work starts (:func:`fem.app.options.prepare`): old spellings,
     ``--quiet``, every output path (``attr=kind``), plotly for ``--html``."""
@@ -40,6 +56,7 @@ def _emit(args, command: str, study, data: dict) -> dict:
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _outputs(args, "modal", json="json", plot="plot", vtu="mesh", render="dir", csv="csv")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     study = Study.load(args.model)
     if (args.vtu or args.render or args.plot) and study.kind != "fe":
         opt = "--vtu" if args.vtu else ("--render" if args.render else "--plot")
@@ -86,6 +103,12 @@ def modal(args) -> int:
             print(f"warning: no images: {exc}", file=sys.stderr)
             return 5
     return 0 if (res.reliable | res.rigid).all() else 3
+
+
+def max_modes() -> int:
+    from ..modelfile import budget
+
+    return int(budget.MAX_MODES * budget.scale())
 
 
 def _dunkerley(study) -> float | None:
@@ -151,6 +174,8 @@ def forced(args) -> int:
     if steady and not res.completed:
         print(f"continuation stopped early: {res.reason} (the partial branch is kept)", file=sys.stderr)
         return 1
+    if not steady and not np.all(data.get("reliable", True)):
+        return 3                 # a response not reliable in double precision (flagged in the table and the JSON)
     return 0
 
 
@@ -238,6 +263,7 @@ def sweep(args) -> int:
     from .sweep import run_sweep
 
     _outputs(args, "sweep", json="json", out="dir", resume="dir")
+    count_option(args, "workers", 0, max_workers(), "local worker processes; 0: serial, without Dask")
     return run_sweep(args.model, scheduler=args.scheduler, resume=args.resume, out=args.out, json_path=args.json,
                      workers=args.workers)
 
@@ -265,6 +291,8 @@ def render(args) -> int:
     from ..render import render_study
 
     _outputs(args, "render", render="dir")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
+    count_option(args, "mode", 1, max_modes(), "a mode number")
     if args.render is None:
         raise ModelError("command line", "--render", None, "a directory for the pictures and their data files "
                          "(drivefem render MODEL --render DIR)")

@@ -34,7 +34,7 @@ def convert(args) -> int:
     from ..modelfile.ross import convert_ross, read_ross, rotor_file_text
 
     if args.out:
-        check_output_path(args.out, "--out")
+        check_output_path(args.out, "--out", kind="toml")
     data = read_ross(args.source)
     extrapolate = args.extrapolate or ("continue" if args.interpolation == "smoothing-spline" else "refuse")
     doc, notes = convert_ross(data, source=args.source, extrapolate=extrapolate,

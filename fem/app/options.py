@@ -134,9 +134,11 @@ def plot_target(path, command: str, form: str | None = None, option: str = "--pl
         return None, p
     if suffix in FIGURE_SUFFIXES and not p.is_dir():
         return p, None
-    if suffix in FILE_SUFFIXES or (p.exists() and not p.is_dir()):
+    if (suffix and not p.is_dir()) or (p.exists() and not p.is_dir()):   # out.xyz: neither a figure nor a folder name
         raise ModelError("command line", option, str(path), "a figure file (.png, .svg, .pdf: the main figure) or a "
-                         f"directory (every figure) for drivefem {command}")
+                         f"directory (every figure) for drivefem {command}"
+                         + (f"; {suffix!r} is not a figure format (a new directory takes a name without a suffix)"
+                            if suffix and suffix not in FILE_SUFFIXES else ""))
     return None, p
 
 
@@ -163,12 +165,12 @@ def prepare(args, command: str, **kinds) -> dict:
     in the command's form of :data:`FIGURES`, ``"dir"`` a directory, else a file), and plotly
     present when ``--html`` is given; two outputs on one path are bad input.  Returns
     {attr: (file, directory)} of the paths given."""
-    from ..output.paths import check_output_path
+    from ..output.paths import SUFFIXES, check_output_path
     from .progress import set_quiet
 
     resolve_old(args)
     set_quiet(getattr(args, "quiet", False))
-    out, seen = {}, {}
+    out, seen, checks = {}, {}, []
     for attr, kind in kinds.items():
         value = getattr(args, attr, None)
         if value is None:
@@ -182,13 +184,18 @@ def prepare(args, command: str, **kinds) -> dict:
             file, folder = None, directory_target(value, option, DIRECTORY_WHAT.get(attr, "the outputs"))
         else:
             file, folder = Path(value), None
-        check_output_path(file or folder, option, directory=folder is not None)
-        target = Path(os.path.abspath(file or folder))
+        if "\x00" in str(value):
+            raise ModelError("command line", option, repr(str(value))[:60], "a path without NUL characters")
+        target = Path(os.path.realpath(os.path.abspath(file or folder)))   # one file under two names too
         if target in seen:
             raise ModelError("command line", option, str(value), f"a path other than that of {seen[target]} "
                              "(two outputs would overwrite each other)")
         seen[target] = option
         out[attr] = (file, folder)
+        checks.append((file or folder, option, folder is not None, kind))
+    for path, option, directory, kind in checks:     # after the pairs: a shared path is named as such
+        check_output_path(path, option, directory=directory,
+                          kind=kind if not directory and kind in SUFFIXES else None)   # .json for --json, ...
     need_plotly(args)
     return out
 

@@ -25,7 +25,8 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import check_output_path, columns, contract, tables, write_csv, write_json
+from ..output import columns, contract, tables, write_csv, write_json
+from .commands import max_modes, count_option
 from ..output.jsonio import encode
 
 RPM = 30.0 / np.pi
@@ -106,6 +107,7 @@ def _rub_records(study) -> list | None:
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _check_outputs(args, "modal", json="json", plot="plot", render="dir", csv="csv", vtu="mesh")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     if getattr(args, "vtu", None):
         raise ModelError("command line", "--vtu", args.vtu, "--json, --csv, --plot (orbits) or --render (3D whirl "
                          "pictures) for a rotor model file")
@@ -216,7 +218,7 @@ def forced(args) -> int:
         from ..output.html import bode_html
 
         print(f"wrote {bode_html(res, args.html, title=study.title)}")
-    return 0
+    return 0 if all(p.resolved for p in res.peaks) else 3      # an undamped peak: not a property of the rotor
 
 
 def forced_table(study, res, all_rows: bool = False, out=None) -> None:
@@ -268,6 +270,7 @@ def response_columns(res, loads=None) -> tuple[list[str], list]:
 # ------------------------------------------------------------- campbell
 def campbell(args) -> int:
     _check_outputs(args, "campbell", json="json", plot="plot", csv="csv", html="html")
+    count_option(args, "modes", 1, max_modes(), "the number of tracked modes")
     study = _load(args.model)
     if study.kind != "rotor":
         raise ModelError(str(args.model), "rotor", None, f"a model file with a [rotor] table (this is a {study.kind} "

@@ -321,7 +321,7 @@ def run_sweep(model_path, *, scheduler=None, resume=None, out=None, json_path=No
     if json_path:
         from ..output.paths import check_output_path, try_writing
 
-        try_writing(check_output_path(json_path, "--json").parent, "--json", json_path)
+        try_writing(check_output_path(json_path, "--json", kind="json").parent, "--json", json_path)
     store = SweepStore(outdir, base, spec["analysis"], spec["periods"], pts, str(model_path))
     note = store.open("--resume" if resume else "--out")
     if note:

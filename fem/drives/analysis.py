@@ -384,7 +384,10 @@ class DriveComparison:
 
     @property
     def convergence_rel(self) -> tuple[np.ndarray, np.ndarray]:
-        return (self.convergence_lower / self.continuum_lower - 1, self.convergence_upper / self.continuum_upper - 1)
+        """Relative deviations of the discrete roots from the continuum's (NaN for a rigid-body root, 0 in both)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return (np.where(self.continuum_lower != 0, self.convergence_lower / self.continuum_lower - 1, np.nan),
+                    np.where(self.continuum_upper != 0, self.convergence_upper / self.continuum_upper - 1, np.nan))
 
     @property
     def observed_order(self) -> np.ndarray:
@@ -403,7 +406,7 @@ class DriveComparison:
                                 "upper_rad_s": self.convergence_upper.tolist(),
                                 "continuum_lower_rad_s": self.continuum_lower.tolist(),
                                 "continuum_upper_rad_s": self.continuum_upper.tolist(),
-                                "lower_rel_dev": lo_rel.tolist(), "upper_rel_dev": hi_rel.tolist(),
+                                "lower_rel_dev": [nan(r) for r in lo_rel], "upper_rel_dev": [nan(r) for r in hi_rel],
                                 "observed_order_r1": [nan(r) for r in self.observed_order]},
                 # the modal JSON keys for the drive's own discrete model
                 "omega_rad_s": nan(np.sort(np.concatenate(self.rows["discrete"]))),
@@ -440,7 +443,10 @@ def compare_model(model: DriveModel, *, R: int = 3, convergence_n=None) -> Drive
     if reg is not None and reg.output == "free":
         allf = reg.natural_frequencies()
         rows["closed form (10.36)+(10.16)"] = _branches(allf, model.mechanism.k, R)
-    c_lo, c_hi = continuum_roots(model, R)
+    free = model.boundary == "free-free"
+    c_lo, c_hi = continuum_roots(model, R + free)
+    if free:         # its rigid-body root 0 is no branch root of the other representations (_branches drops it)
+        c_lo, c_hi = c_lo[c_lo > 0][:R], c_hi[:R]
     rows["pseudo-medium (10.50)"] = (c_lo, c_hi)
     if convergence_n is None:
         convergence_n = [model.n * 2**i for i in range(5)]

@@ -65,7 +65,6 @@ def build_continuum(model: DriveModel, *, elements: int | None = None, order: in
         constrained += list(i_y)
     field = np.empty(basis.N, dtype=object)
     field[i_th], field[i_y] = "theta", "y"
-    rigid = np.zeros((basis.N, 0))
     rmodes = np.zeros((basis.N, 0))
     if model.boundary == "free-free" and model.mechanism.output == "free":
         rmodes = np.zeros((basis.N, 1))

@@ -22,6 +22,16 @@ MAX_CONTINUATION_STEPS = 100_000
 MAX_TIME_STEPS = 5_000_000       # steps of a time integration (estimated)
 MAX_START_STEPS = 100_000        # steps of the DOP853 run that starts HB ([steady] start = "time"; Python rhs)
 MAX_OUTPUT_SAMPLES = 2_000_000   # recorded instants of a simulation
+MAX_RECORDED_VALUES = 100_000_000  # numbers a time integration keeps in memory (every step end x state size)
+MAX_RESPONSE_VALUES = 50_000_000   # complex amplitudes a harmonic analysis keeps (frequencies x DOFs, samples x outputs)
+MAX_NUMERIC_EVALUATIONS = 500_000  # right-hand sides of the numeric pieces of an event-driven run (checked as it runs)
+
+
+def numeric_evaluations() -> int:
+    """The right-hand-side evaluations the numerically integrated pieces of an event-driven run may use: their
+    cost shows only while they run (a stiff law makes DOP853's steps tiny), so the solver stops the run when
+    they are used up (exit 1, results up to there kept)."""
+    return int(MAX_NUMERIC_EVALUATIONS * scale())
 
 
 def scale() -> float:
@@ -95,15 +105,23 @@ def check_document(doc, kind: str) -> None:
                         "recorded instants (two per event, kept in memory)", sim.max_events)
 
 
-def check_time_integration(t_end: float, omega_max: float, steps_per_period: int, method: str) -> None:
-    """The steps an event-driven or regularised run needs to resolve its highest frequency
-    (``omega_max`` of the linear part and the stiffest element) over ``t_end``."""
+def check_time_integration(t_end: float, omega_max: float, steps_per_period: int, method: str,
+                           state_size: int = 1) -> None:
+    """The steps an event-driven or regularised run needs to resolve its fastest motion over ``t_end``:
+    ``omega_max`` is the highest frequency of the linear part with the stiffest element, or the fastest rate
+    of its dampers and of an element's own dynamics (a motor's time constant), whichever is larger
+    (:attr:`discrete.nonsmooth.problem.Problem.rate_max`); the memory of the run is those steps times
+    ``state_size`` (the solvers keep every step's state)."""
     if method == "moreau":
         return                            # fixed step: checked from dt
     steps = t_end * omega_max * steps_per_period / (2 * math.pi)
     check_count("[simulation]", "t_end", steps, MAX_TIME_STEPS,
-                f"steps ({steps_per_period} per period of the highest frequency {omega_max:.3g} rad/s of the "
-                "model: stiff elements or small inertias shorten it)", t_end)
+                f"steps ({steps_per_period} per period of the highest frequency or fastest rate {omega_max:.3g} rad/s of the "
+                "model: stiff elements, small inertias, strong dampers or short motor time constants shorten it)",
+                t_end)
+    # every step end is recorded (the event-driven solver keeps the state at each step; DOP853 its steps)
+    check_count("[simulation]", "t_end", steps * max(1, state_size), MAX_RECORDED_VALUES,
+                f"recorded values ({steps:.3g} steps x {state_size} state variables, kept in memory)", t_end)
 
 
 def check_start_integration(t_end: float, omega_max: float, periods: int) -> None:
@@ -119,3 +137,17 @@ def check_hb(n_dofs: int, harmonics: int, key: str = "harmonics") -> None:
     """The HB unknowns n_dofs (2 harmonics + 1) within the budget (``key``: the key that sets them)."""
     check_count("[steady]", key, n_dofs * (2 * harmonics + 1), MAX_HB_UNKNOWNS,
                 f"harmonic-balance unknowns ({n_dofs} DOFs x (2 harmonics + 1))")
+
+
+def check_response(n_frequencies: int, n_dofs: int, n_outputs: int, harmonics: int | None = None) -> None:
+    """The memory of a linear forced analysis: the complex amplitudes of every DOF at every frequency (the
+    direct solver keeps them), and with a periodic load the period sampled for its peak (max(8192, 32 H)
+    instants per output, discrete.linear.periodic_forced)."""
+    if harmonics is None:
+        check_count("[analysis]", "frequencies", n_frequencies * n_dofs, MAX_RESPONSE_VALUES,
+                    f"response values ({n_frequencies} frequencies x {n_dofs} DOFs, kept in memory)", n_frequencies)
+        return
+    samples = max(8192, 32 * harmonics)
+    check_count("[analysis]", "harmonics", max((harmonics + 1) * n_dofs, samples * n_outputs), MAX_RESPONSE_VALUES,
+                f"response values (({harmonics} + 1) harmonics x {n_dofs} DOFs, and {samples} samples of a period x "
+                f"{n_outputs} outputs, kept in memory)", harmonics)

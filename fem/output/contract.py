@@ -10,7 +10,9 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
   stop band.
 * forced: ``frequencies_hz``, ``omega_rad_s`` (n_freq), ``outputs`` (n_out names), ``amplitude`` and
   ``phase_lag_deg`` (n_out x n_freq), ``response`` (complex, n_out x n_freq; null for the nonlinear
-  curve, whose amplitude is its response measure), ``method``, ``damping``, ``warnings``; the
+  curve, whose amplitude is its response measure), ``method``, ``damping``, ``warnings``; linear FE and
+  lumped results add ``reliable`` and ``error_estimate`` per frequency (false / of order 1 where the dynamic
+  stiffness is singular to working precision: an undamped resonance, omega = 0 of a free motion); the
   nonlinear curve (``steady``) adds ``stable``, ``max_multiplier``, ``folds``, ``reason``, ...
 * simulate: ``t_end``, ``events``, ``period``, ``energy_error``, ``stopped_early``, ``reason``, ...;
   lumped and hybrid files add ``element_summary`` (impacts, impulse_sum, friction work per element) and
@@ -27,7 +29,8 @@ and ``kind`` (fe | lumped | hybrid | drive), then the command's keys:
 * rotor files (kind ``rotor``): modal adds ``speed_rad_s``, ``eigenvalues``, ``damping_ratio``,
   ``log_decrement``, ``whirl``, ``kind_of_mode``, orbits, and ``mode_shapes`` as complex v, w at the
   shaft nodes; forced is the unbalance response with the speeds as ``omega_rad_s``, one output per probe
-  (named after the disc/bearing there), ``peaks`` (AF, separation margins), ``orbit_major`` (n_speeds x
+  (named after the disc/bearing there), ``peaks`` (AF, separation margins, ``resolved``: false for an
+  undamped peak whose amplitude only the search resolution bounds), ``orbit_major`` (n_speeds x
   n_nodes); simulate is the run-up; campbell: ``speeds_rad_s``, ``speeds_rpm``, ``omega_rad_s``,
   ``natural_frequency_rad_s``, ``log_decrement``, ``damping_ratio``, ``whirl`` (n_modes x n_speeds),
   ``kind_of_mode``, ``mac_min``, ``residual_max``, ``orders``, ``critical_speeds``, ``warnings``.

@@ -51,12 +51,15 @@ def forced_table(study, res, all_rows: bool = False, out=None) -> None:
     idx = np.arange(res.omega_rad_s.size)
     if idx.size > 40 and not all_rows:
         idx = np.unique(np.linspace(0, idx.size - 1, 40).astype(int))
+    ok = res.reliable
     for j in idx:
         row = "".join(f" | {res.amplitude[j, k]:12.5e}{res.phase_lag_deg[j, k]:12.3f}" for k in range(len(res.outputs)))
-        print(f"{res.frequencies_hz[j]:12.5f}{row}", file=out)
+        print(f"{res.frequencies_hz[j]:12.5f}{row}" + ("" if ok[j] else "  NOT RELIABLE (see warnings)"), file=out)
     if idx.size < res.omega_rad_s.size:
         print(f"({res.omega_rad_s.size} frequencies; every {res.omega_rad_s.size // idx.size}th shown, --all for all)",
               file=out)
+    for wmsg in res.warnings:
+        print(f"warning: {wmsg}", file=out)
 
 
 def outputs_lines(d: dict, out=None, limit: int = 12) -> None:

@@ -104,10 +104,11 @@ class ResponsePeak:
     required_margin: float | None        # API 617/684 requirement for this AF, %
     passes: bool | None
     note: str = ""
+    resolved: bool = True                # False: the peak is bounded only by the search resolution (AF_RESOLVED)
 
     def to_dict(self) -> dict:
         return {"probe": self.probe, "speed_rad_s": self.speed_rad_s, "speed_rpm": self.speed_rad_s * 30 / np.pi,
-                "amplitude": self.amplitude,
+                "amplitude": self.amplitude, "resolved": self.resolved,
                 "half_power_rad_s": None if self.half_power_rad_s is None else list(self.half_power_rad_s),
                 "amplification_factor": self.amplification_factor, "separation_margin_percent": self.separation_margin,
                 "required_margin_percent": self.required_margin, "passes": self.passes, "note": self.note}
@@ -146,6 +147,13 @@ class UnbalanceResponse:
                 "orbit_major": o.major.tolist(), "orbit_minor": o.minor.tolist(),
                 "operating_range_rad_s": None if self.operating_range is None else list(self.operating_range),
                 "n_dofs": self.n_dofs, "method": self.method, "warnings": list(self.warnings)}
+
+
+#: The largest amplification factor a peak can be resolved with: the search locates the peak speed to 1e-9 of
+#: itself, so a half-power band narrower than 1e-6 of the speed (AF > 1e6, a damping ratio below 5e-7) lies
+#: within a thousand steps of that resolution -- an undamped (or practically undamped) mode, whose amplitude
+#: grows without bound as the search closes in: its peak amplitude and AF are not properties of the rotor.
+AF_RESOLVED = 1e6
 
 
 def required_margin(af: float, above: bool) -> float:
@@ -329,7 +337,15 @@ def _peaks(solver, rs, probe, j, s, amp, op_range, warnings) -> list:
             hi = brentq(lambda x: a(x) - target, nc if k == i else s[k], s[k + 1], xtol=1e-10 * nc)
         note = ""
         af = sm = req = ok = None
-        if lo is not None and hi is not None and hi > lo:
+        resolved = True
+        if lo is not None and hi is not None and hi > lo and nc / (hi - lo) > AF_RESOLVED:
+            resolved = False
+            note = (f"UNBOUNDED: an undamped resonance (half-power band {hi - lo:.3g} rad/s, AF {nc / (hi - lo):.3g} "
+                    f"> {AF_RESOLVED:g}): the amplitude grows without bound towards {nc:.6g} rad/s, the value shown "
+                    "is where the search stopped; no AF, no margin check (add damping to the model)")
+            warnings.append(f"probe {j + 1}: the peak near {nc * 30 / np.pi:.6g} rev/min is an undamped resonance: "
+                            "its amplitude is bounded only by the search resolution (not reliable; add damping)")
+        elif lo is not None and hi is not None and hi > lo:
             af = nc / (hi - lo)
         else:
             note = ("no half-power speeds on both flanks (the amplitude does not fall monotonically to peak/sqrt(2) "
@@ -348,5 +364,5 @@ def _peaks(solver, rs, probe, j, s, amp, op_range, warnings) -> list:
         peaks.append(ResponsePeak(probe=j, speed_rad_s=nc, amplitude=peak,
                                   half_power_rad_s=None if lo is None or hi is None else (float(lo), float(hi)),
                                   amplification_factor=af, separation_margin=sm, required_margin=req, passes=ok,
-                                  note=note))
+                                  note=note, resolved=resolved))
     return peaks

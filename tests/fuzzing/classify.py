@@ -2,9 +2,11 @@
 
 Classes, in order of precedence (a run gets the first that applies; every finding is also a flag):
 
-``HANG``        the run was still going at its wall-clock limit (killed; its stack is in the dump)
+``HANG``        the run was still going at its limit: its CPU time, or the wall-clock ceiling for a run that
+                waits without computing (killed; its stack is in the dump)
 ``TRACEBACK``   "Traceback" in stdout or stderr
-``BADEXIT``     an exit code outside the documented set {0, 1, 2, 3, 4, 5}, or death by a signal
+``BADEXIT``     an exit code outside the documented set {0, 1, 2, 3, 4, 5} -- among them 70, drivefem's own
+                "internal error" (a bug, as a traceback is) -- or death by a signal
 ``NONFINITE``   a JSON file written holds NaN, Infinity or a number that overflows to inf
 ``BADJSON``     a JSON file written does not parse (truncated, not UTF-8, ...)
 ``BADMESSAGE``  exit 2 without a ``drivefem: error:`` line, or one that names no key (neither a word
@@ -250,7 +252,7 @@ def classify(res: RunResult, root: Path) -> Outcome:
     if cls == "HANG":
         where, lib = _where(stack_dump(res.stderr), root, innermost_first=True)
         cause = f"hang in {where}"
-        detail = f"still running after {res.duration_s:.0f} s" + (f"; innermost frame {lib}" if lib else "")
+        detail = f"still running after {res.duration_s:.0f} s (wall clock)" + (f"; innermost frame {lib}" if lib else "")
     elif cls == "TRACEBACK":
         frames, exc = last_traceback(both)
         etype = exc.split(":")[0].rsplit(".", 1)[-1] if exc else "Traceback"
@@ -266,7 +268,7 @@ def classify(res: RunResult, root: Path) -> Outcome:
                 name = str(-rc)
             cause = f"killed by {name}"
         else:
-            cause = f"exit code {rc}"
+            cause = f"exit code {rc}" + (" (internal error)" if rc == 70 else "")
         frames = stack_dump(res.stderr)
         if frames:
             cause += f" in {_where(frames, root, innermost_first=True)[0]}"

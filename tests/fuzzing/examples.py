@@ -15,21 +15,23 @@ from pathlib import Path
 
 COMMANDS = ("modal", "forced", "simulate", "compare", "sweep", "render", "parametric", "campbell")
 
-#: Commands that apply to each kind of model file (the first one is the file's main command).
+#: Commands that apply to each kind of model file (the first one is the file's main command); every command
+#: that accepts the kind (measured: each example's cheap base exits 0 through these), plus the commands its
+#: optional tables open (:data:`BY_TABLE`).
 APPLICABLE = {
     "fe_modal": ("modal", "render"),
-    "fe_forced": ("forced", "modal"),
+    "fe_forced": ("forced", "modal", "render"),
     "lumped_modal": ("modal",),
     "lumped_forced": ("forced", "modal"),
-    "nonsmooth": ("simulate",),
-    "hybrid": ("simulate",),
-    "steady": ("forced",),
-    "sweep": ("sweep", "forced"),
+    "nonsmooth": ("simulate", "modal"),
+    "hybrid": ("simulate", "modal"),
+    "steady": ("forced", "modal"),
+    "sweep": ("sweep", "forced", "modal"),
     "drive_modal": ("modal", "compare"),
     "drive_forced": ("forced", "modal", "compare"),
     "parametric": ("parametric", "modal"),
-    "rotor": ("modal", "campbell", "forced"),
-    "rotor_campbell": ("campbell", "modal", "forced"),
+    "rotor": ("modal", "campbell"),
+    "rotor_campbell": ("campbell", "modal"),
     "rotor_forced": ("forced", "modal", "campbell"),
     "rotor_simulate": ("simulate", "modal", "campbell"),
     "train": ("modal", "campbell"),
@@ -39,6 +41,9 @@ APPLICABLE = {
     "train_parametric": ("parametric", "modal"),
     "other": ("modal", "forced", "simulate"),
 }
+#: A table that makes one more command apply: a [simulation] table (a steady or sweep file also simulates),
+#: a rotor's [unbalance_response] (forced) and [run_up] (simulate).
+BY_TABLE = {"simulation": "simulate", "unbalance_response": "forced", "run_up": "simulate"}
 
 _NONSMOOTH_TABLES = {"impact", "friction", "gap", "one_sided", "distributed_friction", "initial",
                      "reduction", "simulation", "driver", "force"}
@@ -88,7 +93,8 @@ class Example:
 
     @property
     def commands(self) -> tuple[str, ...]:
-        return APPLICABLE[self.kind]
+        base = APPLICABLE[self.kind]
+        return base + tuple(dict.fromkeys(c for t, c in BY_TABLE.items() if t in self.doc and c not in base))
 
     @property
     def wrong_commands(self) -> tuple[str, ...]:

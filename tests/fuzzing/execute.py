@@ -5,14 +5,18 @@ outputs go to ``out/``), so nothing leaks into the checkout.  The child is the p
 console-script entry point (read from ``pyproject.toml``) started by a small bootstrap that
 
 * puts the source tree under test first on ``sys.path`` (so a snapshot can be fuzzed),
-* limits address space and file size (a 1e9-element model must fail, not swap the machine), and
-* registers ``faulthandler`` on SIGUSR1, so a run over its limit dumps its stack before it is killed.
+* limits address space, file size (a 1e9-element model must fail, not swap the machine) and CPU time
+  (the run's limit: a loaded machine slows a run down, it does not make it a "hang"; a wall-clock
+  ceiling of ``wall_factor`` x the limit catches a run that waits without computing), and
+* registers ``faulthandler`` on SIGUSR1 and SIGXCPU, so a run over its limit dumps its stack before it
+  is killed.
 
 BLAS/OpenMP run single-threaded; the child is its own process group, killed whole at the end.
 """
 from __future__ import annotations
 
 import json
+import math
 import os
 import shlex
 import shutil
@@ -25,9 +29,10 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .mutate import Mutation, SECONDARY_OUTPUTS
+from .mutate import FILE_SUFFIX, Mutation, SECONDARY_OUTPUTS
 
 MEMORY_LIMIT = 4 << 30      # bytes of address space per run
+WALL_FACTOR = 5.0           # wall-clock ceiling of a run, in units of its CPU-time limit
 FILE_SIZE_LIMIT = 1 << 30   # bytes per file written
 TEXT_CAP = 1 << 20          # characters of stdout / stderr kept per run (head and tail beyond that)
 JSON_CAP = 200 << 20        # bytes of a JSON file read back (larger ones are reported, not parsed)
@@ -35,10 +40,14 @@ JSON_CAP = 200 << 20        # bytes of a JSON file read back (larger ones are re
 _BOOT = """\
 import faulthandler, os, resource, signal, sys
 faulthandler.register(signal.SIGUSR1, all_threads=True)
+faulthandler.register(signal.SIGXCPU, all_threads=True)
 for lim, env in ((resource.RLIMIT_AS, "DRIVEFEM_FUZZ_MEMORY"), (resource.RLIMIT_FSIZE, "DRIVEFEM_FUZZ_FSIZE")):
     v = int(os.environ.get(env, "0"))
     if v:
         resource.setrlimit(lim, (v, v))
+cpu = int(os.environ.get("DRIVEFEM_FUZZ_CPU", "0"))
+if cpu:
+    resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 1))
 resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
 sys.path.insert(0, os.environ["DRIVEFEM_FUZZ_ROOT"])
 sys.argv[0] = "drivefem"
@@ -85,11 +94,12 @@ class Runner:
     """Runs jobs for one source tree ``root`` with ``python`` and a per-run ``limit_s``."""
 
     def __init__(self, root: Path, work: Path, limit_s: float = 60.0, python: str = sys.executable,
-                 memory_limit: int = MEMORY_LIMIT, fork: bool = True):
+                 memory_limit: int = MEMORY_LIMIT, fork: bool = True, wall_factor: float = WALL_FACTOR):
         self.root = Path(root).resolve()
         self.work = Path(work)
         self.work.mkdir(parents=True, exist_ok=True)
-        self.limit_s = limit_s
+        self.limit_s = limit_s                     # CPU seconds of one run
+        self.wall_s = limit_s * wall_factor        # wall-clock ceiling of one run
         self.python = python
         self.module, self.func = entry_point(self.root)
         self.boot = _BOOT.format(module=self.module, func=self.func)
@@ -97,7 +107,8 @@ class Runner:
                         DRIVEFEM_FUZZ_FSIZE=str(FILE_SIZE_LIMIT), OPENBLAS_NUM_THREADS="1",
                         OMP_NUM_THREADS="1", MKL_NUM_THREADS="1", MPLBACKEND="Agg",
                         PYVISTA_OFF_SCREEN="true", VTK_DEFAULT_OPENGL_WINDOW="vtkOSOpenGLRenderWindow",
-                        PYTHONFAULTHANDLER="1", PYTHONDONTWRITEBYTECODE="1", PYTHONIOENCODING="utf-8")
+                        PYTHONFAULTHANDLER="1", PYTHONDONTWRITEBYTECODE="1", PYTHONIOENCODING="utf-8",
+                        DRIVEFEM_FUZZ_CPU=str(int(math.ceil(limit_s))))
         self.env.pop("PYTHONPATH", None)
         self._chattr = shutil.which("chattr") if os.geteuid() == 0 else None
         self._active: set[subprocess.Popen] = set()
@@ -143,7 +154,8 @@ class Runner:
     def _run_forked(self, run_dir: Path, argv: list[str]) -> tuple[int | None, bool]:
         """(exit code, timed out) of one run forked from this thread's fork server."""
         srv = self._server()
-        srv.stdin.write(json.dumps({"dir": str(run_dir), "argv": argv, "limit": self.limit_s}) + "\n")
+        srv.stdin.write(json.dumps({"dir": str(run_dir), "argv": argv, "limit": self.limit_s,
+                                    "wall": self.wall_s}) + "\n")
         line = srv.stdout.readline()
         if not line:                       # the server died (killed by a Ctrl-C of the fuzzer)
             if self.stopped:
@@ -164,19 +176,23 @@ class Runner:
             actions.append((art[m.artifact][0], "model.toml"))
             setup.append(art[m.artifact][1])
         outputs = {"--json": "out/result.json"}
-        if cmd == "render":       # no --json: its JSON (modes.json) goes into --out
-            outputs = {"--out": "out/render"}
+        if cmd == "render":       # no --json: its JSON (modes.json) goes into --render
+            outputs = {"--render": "out/render"}
         if cmd == "sweep":
             outputs["--out"] = "out/sweep"
+        secondary = dict(SECONDARY_OUTPUTS.get(cmd, ()))
+
+        def extra_path(option):
+            return f"out/extra{option.replace('-', '_')}" + ("" if secondary.get(option) == "dir"
+                                                                 else FILE_SUFFIX.get(option, ""))
+
         if job.extra_outputs:
-            for option, what in SECONDARY_OUTPUTS.get(cmd, ()):
-                outputs.setdefault(option, f"out/extra{option.replace('-', '_')}" + (".csv" if option == "--csv" else
-                                   ".png" if option == "--plot" else ".vtu" if option == "--vtu" else
-                                   ".h5" if option == "--h5" else ""))
+            for option in secondary:
+                outputs.setdefault(option, extra_path(option))
         if m.output:
             option, kind = m.output
-            is_dir = dict(SECONDARY_OUTPUTS.get(cmd, ())).get(option) == "dir"
-            ext = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu", "--h5": ".h5"}.get(option, "")
+            is_dir = secondary.get(option) == "dir"
+            ext = "" if is_dir else FILE_SUFFIX.get(option, "")
             if kind == "under_file":
                 actions.append(("file", "out/blocker"))
                 setup.append("touch out/blocker")
@@ -196,6 +212,20 @@ class Runner:
                 outputs[option] = "out/readonly/target" + ext
             elif kind == "dev_full":
                 outputs[option] = "/dev/full"
+            elif kind == "empty":
+                outputs[option] = ""
+            elif kind == "long_name":
+                outputs[option] = "out/" + "n" * 300 + ext
+            elif kind == "bad_suffix":
+                outputs[option] = "out/result.xyz"
+            elif kind == "same_path":
+                partner = next((o for o in outputs if o != option), None)
+                if partner is None:          # a second output is added to share the path with
+                    partner = next((o for o in (["--json"] if cmd != "render" else []) + list(secondary)
+                                    if o != option), None)
+                    if partner is not None:
+                        outputs[partner] = extra_path(partner)
+                outputs[option] = outputs[partner] if partner is not None else outputs.get(option, "out/x")
         argv = [cmd, "model.toml"]
         for option, path in outputs.items():
             argv += [option, path]
@@ -203,6 +233,7 @@ class Runner:
             argv += ["--workers", "0"]
         if cmd == "render":
             argv += ["--mode", "1"]
+        argv += list(m.options)          # after the run's own options: an attacked option wins
         return argv, setup, actions
 
     def _prepare(self, run_dir: Path, job: Job, actions: list[tuple]) -> None:
@@ -247,6 +278,8 @@ class Runner:
                 if self.stopped:
                     raise KeyboardInterrupt
                 rc, timed_out = self._run_forked(run_dir, argv)
+                if rc in (-signal.SIGKILL, -signal.SIGXCPU) and _dumped(err_f):
+                    rc, timed_out = None, True      # killed at its CPU-time limit after the SIGXCPU stack dump
                 return self._collect(job, argv, setup, run_dir, rc, timed_out, time.monotonic() - t0)
             with open(out_f, "wb") as fo, open(err_f, "wb") as fe:
                 with self._lock:
@@ -257,7 +290,9 @@ class Runner:
                     self._active.add(proc)
                 timed_out = False
                 try:
-                    rc = proc.wait(timeout=self.limit_s)
+                    rc = proc.wait(timeout=self.wall_s)
+                    if rc in (-signal.SIGKILL, -signal.SIGXCPU) and _dumped(err_f):
+                        timed_out, rc = True, None       # out of CPU time (RLIMIT_CPU; SIGXCPU dumped the stack)
                 except subprocess.TimeoutExpired:
                     timed_out = True
                     _signal(proc.pid, signal.SIGUSR1)      # faulthandler: where is it stuck?
@@ -300,6 +335,14 @@ class Runner:
         if "chattr +i" in line:
             line += "; chattr -i out/readonly"
         return line
+
+
+def _dumped(err_f: Path) -> bool:
+    """Whether the run's stderr holds a faulthandler stack dump (written at SIGXCPU or SIGUSR1)."""
+    try:
+        return b"(most recent call first)" in err_f.read_bytes()
+    except OSError:
+        return False
 
 
 def _tail(data: bytes) -> str:

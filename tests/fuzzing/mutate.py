@@ -22,8 +22,14 @@ mutations, a change of the command line.  Categories:
 ``encoding``     binary, non-UTF-8, UTF-16, BOM, NUL bytes, empty, whitespace- or comment-only files
 ``filesystem``   a directory, a missing file, a FIFO, a dangling symlink instead of the model file
 ``nesting``      deeply nested arrays / inline tables / table headers
-``output``       --json (--csv, --png, --plot, --out) into a path under a regular file, an existing
-                 directory (or file), a read-only directory, or /dev/full
+``output``       --json (--csv, --plot, --render, --vtu, --h5, --out) into a path under a regular file, an existing
+                 directory (or file), a read-only directory, /dev/full, an empty path, a 300-character
+                 name, a suffix the writer does not produce, or the path of another output option
+``extreme``      schema-valid but physically extreme: one stiffness or inertia scaled by 1e10 or 1e-10 (a
+                 contrast with the rest of the model), every damping set to 0, the forcing frequency at an
+                 undamped resonance or at 0, time constants (a motor's T, omega0, nu) far below the step
+``cli``          command-line options out of range: --modes, --mode 0 / -1 / 1e9, --workers -1 / 1e5,
+                 an unreachable or malformed --scheduler, --resume of a missing directory or of a file
 """
 from __future__ import annotations
 
@@ -45,15 +51,37 @@ OUTPUT_KINDS = {
     "occupied": "a path taken by an existing directory (a file option) or regular file (a directory option)",
     "readonly_dir": "a read-only directory",
     "dev_full": "/dev/full (no space left on device)",
+    "empty": "an empty path ''",
+    "long_name": "a file name of 300 characters",
+    "bad_suffix": "a file name whose suffix the writer does not produce (.xyz)",
+    "same_path": "the path another output option of the same run writes to",
 }
 #: Output options besides --json, per command: (option, what it names).
 SECONDARY_OUTPUTS = {
-    "modal": (("--plot", "file"), ("--vtu", "file"), ("--png", "dir"), ("--csv", "file")),
+    "modal": (("--plot", "file"), ("--vtu", "file"), ("--render", "dir"), ("--csv", "file")),
     "forced": (("--csv", "file"), ("--plot", "file")),
-    "simulate": (("--csv", "file"), ("--png", "dir"), ("--h5", "file")),
+    "simulate": (("--csv", "file"), ("--plot", "dir"), ("--h5", "file")),
     "sweep": (("--out", "dir"),),
-    "render": (("--out", "dir"),),
+    "render": (("--render", "dir"),),
+    "campbell": (("--plot", "file"), ("--csv", "file")),
+    "parametric": (("--plot", "file"), ("--csv", "file")),
 }
+#: The suffix a file output is named with (the figure options write PNG).
+FILE_SUFFIX = {"--json": ".json", "--csv": ".csv", "--plot": ".png", "--vtu": ".vtu", "--png": ".png", "--h5": ".h5",
+               "--html": ".html"}
+#: Integer and other options of each command with values out of range (``cli`` mutations).
+CLI_ATTACKS = {
+    "modal": (("--modes", "0"), ("--modes", "-1"), ("--modes", "1000000000")),
+    "campbell": (("--modes", "0"), ("--modes", "-3"), ("--modes", "1000000000")),
+    "render": (("--modes", "0"), ("--mode", "0"), ("--mode", "-1"), ("--mode", "1000000000")),
+    "sweep": (("--workers", "-1"), ("--workers", "100000"), ("--scheduler", "tcp://127.0.0.1:9"),
+              ("--scheduler", "not an address"), ("--resume", "no/such/dir"), ("--resume", "model.toml")),
+}
+#: Keys of stiffnesses and inertias (scaled by 1e+-10 in ``extreme``), of damping (set to 0) and of time scales.
+STIFFNESS_KEYS = {"k", "E", "G", "GI", "stiffness", "kyy", "kzz", "kyz", "kzy", "c0", "k3", "cubic"}
+INERTIA_KEYS = {"inertia", "mass", "m", "rho", "J", "J0", "Id", "Ip"}
+DAMPING_KEYS = {"c", "cyy", "czz", "psi", "damping", "zeta", "alpha", "beta", "delta", "viscous", "quadratic"}
+TIME_CONSTANT_KEYS = {"T": 1e-12, "omega0": 1e-9, "nu": 1e-12}
 
 
 @dataclass(frozen=True)
@@ -63,7 +91,7 @@ class Mutation:
     ``artifact`` is ``"file"`` (``content`` gives its bytes: ``data``, or built by ``make``), ``"directory"``, ``"missing"``,
     ``"fifo"`` or ``"dangling_symlink"``.  ``output`` = ``(option, kind)`` replaces the output path
     of ``option`` by a bad path of ``kind`` (see :data:`OUTPUT_KINDS`); ``commands`` then limits the
-    commands it applies to.  ``names``: words of which an exit-2 message should name at least one.
+    commands it applies to; ``options``: more command-line arguments (after the run's own, so they win).  ``names``: words of which an exit-2 message should name at least one.
     ``target``: the key path mutated (for grouping), ``""`` for whole-file mutations."""
 
     id: str
@@ -74,6 +102,7 @@ class Mutation:
     artifact: str = "file"
     output: tuple[str, str] | None = None
     commands: tuple[str, ...] | None = None
+    options: tuple[str, ...] = ()
     names: tuple[str, ...] = ()
     target: str = ""
     make: Callable[[], bytes] | None = field(default=None, compare=False, repr=False)
@@ -525,13 +554,103 @@ def gen_outputs(b: _Builder, base: bytes):
     """Bad output paths for every applicable command: --json and the command's other outputs."""
     for cmd in b.ex.commands:
         options = ((("--json", "file"),) if cmd != "render" else ()) + SECONDARY_OUTPUTS.get(cmd, ())
-        for option, _ in options:
+        for option, what_it_names in options:
             for kind, what in OUTPUT_KINDS.items():
                 if option != "--json" and kind == "dev_full":
+                    continue
+                if what_it_names == "dir" and kind in ("bad_suffix", "long_name"):
+                    continue
+                if kind == "same_path" and len(options) < 2:
                     continue
                 b.add("output", "", f"{cmd}{option}_{kind}", f"drivefem {cmd} {option} into {what}",
                       data=base, output=(option, kind), commands=(cmd,),
                       names=(option, option.lstrip("-"), "output", "directory", "path", "file"))
+
+
+def _scale_at(path, factor):
+    def edit(d):
+        set_at(d, path, get_at(d, path) * factor)
+    return edit
+
+
+def _zero_keys(keys):
+    def edit(d):
+        for p, x in list(walk(d)):
+            if is_number(x) and isinstance(p[-1], str) and p[-1] in keys:
+                set_at(d, p, 0 if isinstance(x, int) else 0.0)
+    return edit
+
+
+def _set_analysis(values: dict):
+    def edit(d):
+        an = d.setdefault("analysis", {})
+        for k in ("sweep_hz", "omega_rad_s", "frequencies_hz"):
+            an.pop(k, None)
+        an.update(copy_doc(values))
+    return edit
+
+
+def resonance_omega(doc: dict) -> float | None:
+    """sqrt(k / m) of a lumped file with one body (its springs summed), the forcing at its undamped resonance."""
+    bodies = doc.get("body")
+    if not (isinstance(bodies, list) and len(bodies) == 1 and isinstance(bodies[0], dict)):
+        return None
+    name, m = bodies[0].get("name"), bodies[0].get("inertia")
+    k = sum(s.get("k", 0.0) for s in doc.get("spring", []) if isinstance(s, dict) and name in s.get("between", ())
+            and is_number(s.get("k", 0.0)))
+    if not (is_number(m) and m > 0 and k > 0):
+        return None
+    return math.sqrt(k / m)
+
+
+def gen_extreme(b: _Builder, doc: dict):
+    """Schema-valid but physically extreme values: stiffness and inertia contrasts of 1e10 (one value scaled up
+    or down against the rest), no damping at all, the forcing at 0 or at an undamped resonance, time constants
+    far below any step."""
+    for path, v in list(walk(doc)):
+        key = path[-1] if isinstance(path[-1], str) else next((p for p in reversed(path) if isinstance(p, str)), "")
+        if not is_number(v) or v == 0:
+            continue
+        where = label(path)
+        if key in STIFFNESS_KEYS or key in INERTIA_KEYS:
+            what = "stiffness" if key in STIFFNESS_KEYS else "inertia"
+            for variant, f in (("x1e10", 1e10), ("x1e-10", 1e-10)):
+                b.doc("extreme", path, f"{what}_{variant}", f"{where} scaled by {f:g} ({what} contrast with the rest "
+                      "of the model)", _scale_at(path, f))
+        if key in TIME_CONSTANT_KEYS and isinstance(path[-1], str):
+            new = TIME_CONSTANT_KEYS[key]
+            b.set("extreme", path, "time_constant", f"{where} = {new:g} (a time scale far below any step)", new)
+    damped = [p for p, x in walk(doc) if is_number(x) and x and isinstance(p[-1], str) and p[-1] in DAMPING_KEYS]
+    if damped:
+        b.doc("extreme", ("damping",), "undamped", f"every damping value set to 0 ({len(damped)} values)",
+              _zero_keys(DAMPING_KEYS), names=("damping",))
+    an = doc.get("analysis")
+    if isinstance(an, dict) and an.get("type") == "forced" and "steady" not in doc and "rotor" not in doc:
+        b.doc("extreme", ("analysis", "omega_rad_s"), "omega_zero", "[analysis] omega_rad_s = [0.0, 1.0] (static)",
+              _set_analysis({"omega_rad_s": [0.0, 1.0]}))
+        w = resonance_omega(doc)
+        if w is not None:
+            both = {"omega_rad_s": [w, math.nextafter(w, 0.0)]}
+            b.doc("extreme", ("analysis", "omega_rad_s"), "at_resonance", f"[analysis] omega_rad_s = [{w!r}, one "
+                  "rounding below] (sqrt(k/m))", _set_analysis(both))
+            b.doc("extreme", ("analysis", "omega_rad_s"), "undamped_at_resonance", f"no damping, forced at sqrt(k/m) "
+                  f"= {w!r} rad/s", _both(_zero_keys(DAMPING_KEYS), _set_analysis(both)))
+
+
+def _both(first, second):
+    def edit(d):
+        first(d)
+        second(d)
+    return edit
+
+
+def gen_cli(b: _Builder, base: bytes):
+    """Each command-line option of the file's commands with values out of range."""
+    for cmd in b.ex.commands:
+        for option, value in CLI_ATTACKS.get(cmd, ()):
+            variant = f"{cmd}{option}_{value.replace('/', '_').replace(' ', '_').replace(':', '_')}"
+            b.add("cli", "", variant, f"drivefem {cmd} {option} {value!r}", data=base, commands=(cmd,),
+                  options=(option, value), names=(option, option.lstrip("-"), "scheduler", "directory"))
 
 
 def mutations_of(ex: Example) -> list[Mutation]:
@@ -551,6 +670,8 @@ def mutations_of(ex: Example) -> list[Mutation]:
     gen_encoding(b, base_text)
     gen_nesting(b, ex.cheap, base_text)
     gen_outputs(b, base)
+    gen_extreme(b, ex.cheap)
+    gen_cli(b, base)
     return b.out
 
 

@@ -30,7 +30,7 @@ from pathlib import Path
 
 from .classify import PROPERTY_CLASSES, Outcome, classify
 from .examples import Example, load_examples
-from .execute import Job, Runner
+from .execute import WALL_FACTOR, Job, Runner
 from .mutate import Mutation, all_mutations, mutations_of
 from .summary import figures, markdown_report, text_summary
 
@@ -43,9 +43,10 @@ FAST_VARIANTS = re.compile(r"/(nan|inf|-inf|count_1e9|count_1e9_float|string|boo
                            r"unclosed_array|key_twice|table_twice_.*|lone_cr|binary_.*|latin1_title|"
                            r"invalid_utf8_comment|utf16|utf8_bom|nul_byte|empty|whitespace|comment_only|directory|"
                            r"missing|fifo|dangling_symlink|array_depth_5000|inline_table_depth_2000|"
-                           r"header_depth_1000|dotted_key_depth_1000|value_depth_3000|.*--json_.*)$")
-FAST_N = 56          # mutated files in the default tier (plus one cheap-base control per example)
-FAST_LIMIT_S = 20.0  # wall-clock limit of one run in the default tier
+                           r"header_depth_1000|dotted_key_depth_1000|value_depth_3000|.*--json_.*|"
+                           r".*--(modes|mode|workers)_.*)$")
+FAST_N = 56          # mutated files in the default tier (at least one per example; no controls: see test_fuzz_fast_sample)
+FAST_LIMIT_S = 20.0  # CPU-time limit of one run in the default tier (wall clock: WALL_FACTOR times it)
 SLOW_LIMIT_S = 60.0
 
 
@@ -177,15 +178,16 @@ class FuzzRun:
 
 def execute(jobs: list[Job], *, root: Path = ROOT, jobs_at_once: int = 2, limit_s: float = SLOW_LIMIT_S,
             out_dir: Path | None = None, progress: bool = True, meta: dict | None = None,
-            fork: bool = True) -> FuzzRun:
+            fork: bool = True, wall_factor: float = WALL_FACTOR) -> FuzzRun:
     """Run ``jobs`` (``jobs_at_once`` at a time) and classify them; write results to ``out_dir``.
+    ``limit_s``: CPU seconds of one run (wall clock at most ``wall_factor`` times that).
     ``fork``: fork each run from a server that has imported the package (tests/fuzzing/zygote.py);
     False: a fresh interpreter per run (slower by the import time, ~1-3 s a run)."""
     root = Path(root).resolve()
     t0 = time.monotonic()
     outcomes: list[Outcome] = []
     with tempfile.TemporaryDirectory(prefix="drivefem-fuzz-") as tmp:
-        runner = Runner(root, Path(tmp), limit_s=limit_s, fork=fork)
+        runner = Runner(root, Path(tmp), limit_s=limit_s, fork=fork, wall_factor=wall_factor)
         results_f = None
         if out_dir:
             out_dir = Path(out_dir)
@@ -232,7 +234,8 @@ def execute(jobs: list[Job], *, root: Path = ROOT, jobs_at_once: int = 2, limit_
     outcomes.sort(key=lambda o: (o.id, o.command))
     run = FuzzRun(outcomes, wall, out_dir)
     if out_dir:
-        meta = dict(meta or {}, root=str(root), limit_s=limit_s, processes=jobs_at_once, wall_s=round(wall, 1))
+        meta = dict(meta or {}, root=str(root), cpu_limit_s=limit_s, wall_limit_s=limit_s * wall_factor,
+                    processes=jobs_at_once, wall_s=round(wall, 1))
         (out_dir / "failures.json").write_text(json.dumps(
             {"meta": meta, "figures": figures(outcomes), "failures": [o.to_dict() for o in run.failures]}, indent=1))
         (out_dir / "summary.md").write_text(markdown_report(outcomes, meta))
@@ -249,7 +252,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--fast", action="store_true", help="the default-tier sample (main command only, short limit)")
     p.add_argument("--out", type=Path, help="directory for results.jsonl, failures.json, summary.md, reproducers/")
     p.add_argument("--jobs", type=int, default=2, help="subprocesses at a time (default 2)")
-    p.add_argument("--limit", type=float, default=None, help="wall-clock limit of one run in seconds")
+    p.add_argument("--limit", type=float, default=None, help="CPU-time limit of one run in seconds")
+    p.add_argument("--wall-factor", type=float, default=WALL_FACTOR,
+                   help=f"wall-clock ceiling of one run, in units of --limit (default {WALL_FACTOR:g})")
     p.add_argument("--root", type=Path, default=ROOT, help="source tree under test (default: this checkout)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--example", action="append", help="only mutations of this example (repeatable)")
@@ -286,7 +291,7 @@ def main(argv: list[str] | None = None) -> int:
             muts = fast_sample(examples, None if a.n == 3000 else a.n, a.seed)
         else:
             muts = slow_sample(examples, a.n, a.seed, budget=not a.no_budget)
-        ctrl = [] if a.no_controls else controls(examples, cheap_only=a.fast)
+        ctrl = [] if a.no_controls or a.fast else controls(examples)
     jobs = plan(ctrl + muts, examples, all_commands=not a.fast, wrong_kind_every=0 if a.fast else 10,
                 extras_every=0 if a.fast else a.extras_every, seed=a.seed)
     if a.list:
@@ -299,7 +304,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{a.jobs} at a time, limit {limit:.0f} s, source tree {a.root}", file=sys.stderr)
     try:
         run = execute(jobs, root=a.root, jobs_at_once=a.jobs, limit_s=limit, out_dir=a.out, fork=not a.no_fork,
-                      meta={"seed": a.seed, "sample": "fast" if a.fast else f"n={a.n}"})
+                      meta={"seed": a.seed, "sample": "fast" if a.fast else f"n={a.n}"}, wall_factor=a.wall_factor)
     except KeyboardInterrupt:
         print("interrupted: runs in progress killed" + (f"; finished runs are in {a.out}/results.jsonl" if a.out else ""),
               file=sys.stderr)

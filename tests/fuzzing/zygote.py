@@ -2,8 +2,10 @@
 
 Started by :class:`tests.fuzzing.execute.Runner` as ``python -P zygote.py MODULE FUNC`` with the
 source tree under test in ``DRIVEFEM_FUZZ_ROOT``.  It reads one JSON request per line on stdin,
-``{"dir": run directory, "argv": [...], "limit": seconds}``, forks, and answers one JSON line
-``{"rc": exit code or None, "timed_out": bool}``.  The child is what a fresh ``drivefem`` process
+``{"dir": run directory, "argv": [...], "limit": seconds, "wall": seconds}``, forks, and answers one JSON
+line ``{"rc": exit code or None, "timed_out": bool}``.  ``limit`` is CPU time (``RLIMIT_CPU``: at the limit
+SIGXCPU dumps the stack, two seconds later the kernel kills the run), so that a loaded machine does not turn
+slow runs into "hangs"; ``wall`` (default 5 x limit) catches a run that waits without computing.  The child is what a fresh ``drivefem`` process
 would be after its imports: its own session (killed whole at the end), cwd = the run directory,
 stdout/stderr into ``.stdout``/``.stderr`` there, the address-space and file-size limits, a
 faulthandler dump on SIGUSR1, and an uncaught exception printed as a traceback with exit code 1
@@ -15,6 +17,7 @@ from __future__ import annotations
 import faulthandler
 import importlib
 import json
+import math
 import os
 import resource
 import signal
@@ -29,15 +32,21 @@ PRELOAD = ("numpy", "scipy.sparse", "scipy.sparse.linalg", "scipy.linalg", "scip
            "discrete.nonsmooth.kernel", "discrete.steady.afc", "discrete.timestepping")
 
 
-def _limits() -> None:
+def _limits(cpu: float | None = None) -> None:
     for lim, env in ((resource.RLIMIT_AS, "DRIVEFEM_FUZZ_MEMORY"), (resource.RLIMIT_FSIZE, "DRIVEFEM_FUZZ_FSIZE")):
         v = int(os.environ.get(env, "0"))
         if v:
             resource.setrlimit(lim, (v, v))
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+    if cpu:
+        soft = max(1, int(math.ceil(cpu)))
+        resource.setrlimit(resource.RLIMIT_CPU, (soft, soft + CPU_GRACE))
 
 
-def _child(run_dir: str, argv: list, module: str, func: str) -> None:
+CPU_GRACE = 1          # seconds of CPU between the stack dump (SIGXCPU) and the kernel's kill
+
+
+def _child(run_dir: str, argv: list, module: str, func: str, cpu: float | None = None) -> None:
     """In the forked child: become a fresh ``drivefem`` run; never returns."""
     code = 1
     try:
@@ -54,7 +63,8 @@ def _child(run_dir: str, argv: list, module: str, func: str) -> None:
         signal.signal(signal.SIGINT, signal.default_int_handler)
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         faulthandler.register(signal.SIGUSR1, all_threads=True)
-        _limits()
+        faulthandler.register(signal.SIGXCPU, all_threads=True)        # out of CPU time: where was it?
+        _limits(cpu)
         sys.argv = ["drivefem", *argv]
         try:
             rc = getattr(importlib.import_module(module), func)()
@@ -76,15 +86,20 @@ def _child(run_dir: str, argv: list, module: str, func: str) -> None:
         os._exit(code & 0xFF)
 
 
-def _wait(pid: int, limit: float) -> tuple[int | None, bool]:
-    """Wait for the child up to ``limit`` s; on time-out dump its stack (SIGUSR1) and kill its session."""
+def _wait(pid: int, limit: float, cpu: float | None = None) -> tuple[int | None, bool]:
+    """Wait for the child up to ``limit`` s of wall time; on time-out dump its stack (SIGUSR1) and kill its
+    session.  With ``cpu``: a child killed after using that much CPU time (RLIMIT_CPU) timed out too."""
     t_end = time.monotonic() + limit
     delay = 0.001
     while True:
-        done, status = os.waitpid(pid, os.WNOHANG)
+        done, status, usage = os.wait4(pid, os.WNOHANG)
         if done:
             _killpg(pid)
-            return os.waitstatus_to_exitcode(status), False
+            rc = os.waitstatus_to_exitcode(status)
+            used = usage.ru_utime + usage.ru_stime
+            if cpu and rc in (-signal.SIGKILL, -signal.SIGXCPU) and used >= math.ceil(cpu) - 0.05:
+                return None, True
+            return rc, False
         if time.monotonic() > t_end:
             break
         time.sleep(delay)
@@ -142,11 +157,13 @@ def main() -> None:
     for line in sys.stdin:
         req = json.loads(line)
         sys.stderr.flush()
+        cpu = float(req["limit"])
+        wall = float(req.get("wall") or 5 * cpu)
         pid = os.fork()
         if pid == 0:
-            _child(req["dir"], req["argv"], module, func)
+            _child(req["dir"], req["argv"], module, func, cpu)
         current["pid"] = pid
-        rc, timed_out = _wait(pid, float(req["limit"]))
+        rc, timed_out = _wait(pid, wall, cpu)
         current["pid"] = None
         reply.write(json.dumps({"rc": rc, "timed_out": timed_out}) + "\n")
 

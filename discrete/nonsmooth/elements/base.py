@@ -221,6 +221,11 @@ class Element:
         """The highest frequency of the element's own time dependence (step limits), rad/s."""
         return 0.0
 
+    def rate(self, mass: float) -> float:
+        """The fastest rate (1/s) of the element's own dynamics acting on a coordinate of effective inertia
+        ``mass`` (a damping b: b / mass; an internal state's time constant T: 1 / T), for the step budget."""
+        return 0.0
+
     # ------------------------------------------------------------ smooth laws
     def smooth_force(self, s, sd, eps: float):
         """(F, dF/ds, dF/ds') of the smooth or regularised law (harmonic balance)."""

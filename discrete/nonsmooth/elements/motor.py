@@ -93,6 +93,17 @@ class Motor(Element):
     def velocity_scale(self) -> float:
         return self.omega0
 
+    def rate(self, mass: float) -> float:
+        """With T > 0 the largest |root| of T s^2 + s + 1/(nu omega0 mass) = 0 (the torque state coupled to the
+        rotor, the roots of §5.10); with T = 0 the damping rate 1/(nu omega0 mass) of the static characteristic."""
+        with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+            b = float(np.float64(1.0) / (np.float64(self.nu) * self.omega0 * mass))
+            if self.T == 0 or not math.isfinite(b):
+                return b if math.isfinite(b) else math.inf
+            disc = 1.0 - 4.0 * self.T * b
+            rate = (1.0 + math.sqrt(disc)) / (2.0 * self.T) if disc >= 0 else math.sqrt(b / self.T)
+        return rate if math.isfinite(rate) else math.inf
+
     # ------------------------------------------------------------ other solvers
     def smooth_force(self, s, sd, eps):
         raise ModelError(f"element {self.name!r}", "kind", "motor", "the event-driven time simulation "

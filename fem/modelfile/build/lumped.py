@@ -30,6 +30,8 @@ def _names(pair, where: str) -> tuple[str, str]:
 
 def lumped_model(doc) -> LumpedModel:
     """The linear part of a lumped model file: bodies, drivers, springs, dampers, gears."""
+    if not doc.body:        # every analysis needs a free coordinate (modal and forced as well as simulate)
+        raise ModelError("model file", "body", None, "at least one [[body]] table")
     drivers = []
     for i, t in enumerate(doc.driver, 1):
         w = f"[[driver]] #{i}"

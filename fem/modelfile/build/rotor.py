@@ -250,7 +250,8 @@ def run_up_spec(doc) -> RunUpSpec:
     if t.method == "moreau":
         h = t.time_step
         if h is not None:
-            budget.check_count("[run_up]", "time_step", h, budget.MAX_STEPS, "time steps", t.duration / h)
+            budget.check_count("[run_up]", "time_step", t.duration / h, budget.MAX_TIME_STEPS,
+                               "Moreau-Jean time steps (duration / time_step)", h)
     unb = _unbalances(doc)
     rubs = [Rub(x=r.x, clearance=r.clearance, stiffness=r.stiffness, damping=r.damping, restitution=r.restitution,
                 friction=r.friction, radius=r.radius, centre=tuple(r.centre), name=r.name) for r in doc.rub]

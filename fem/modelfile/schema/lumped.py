@@ -7,7 +7,7 @@ from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, model_validator
 
-from .base import NonNegative, Number, Positive, Real, Table, rule
+from .base import Fraction, NonNegative, Number, Positive, Real, Table, rule
 
 
 class NodeEnd(Table):
@@ -39,8 +39,9 @@ class Body(Table):
     """Mass (kg) or moment of inertia (kg m^2) of the coordinate."""
     inertia_rate: Real["kg/s", "kg*m^2/s"] = 0.0
     """d(inertia)/dt: variable mass m0 + delta t (seed 004 (1), Newton form), kg/s."""
-    reactive: Real["1"] = 0.0
-    """Reactive coefficient epsilon of seed 004 (reactive damping epsilon * inertia_rate)."""
+    reactive: Fraction = 0.0
+    """Reactive coefficient epsilon of seed 004 (reactive damping epsilon * inertia_rate), in [0, 1]: 0 a mass
+    change at zero relative velocity, 1 the momentum form (m x')' = F."""
     x0: Real["m", "rad"] = 0.0
     """Initial displacement."""
     v0: Real["m/s", "rad/s"] = 0.0
