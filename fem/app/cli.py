@@ -94,6 +94,9 @@ def build_parser() -> argparse.ArgumentParser:
     from . import rotor as rotor_command
 
     rotor_command.add_parser(sub)          # drivefem campbell; modal and forced of [rotor] files
+    from . import rotor_analyses
+
+    rotor_analyses.add_parser(sub)         # drivefem static | critical-map | stability (rotor files)
     from . import train as train_command
 
     train_command.add_parser(sub)          # modal, campbell, ... of train files ([[shaft]], [[mesh]])

@@ -46,9 +46,6 @@ def add_parser(subparsers) -> None:
     for name, rotor_command in (("modal", modal), ("forced", forced), ("simulate", simulate)):
         sp = subparsers.choices[name]
         sp.set_defaults(func=_routed(sp.get_default("func"), rotor_command))
-    from . import rotor_analyses
-
-    rotor_analyses.add_parser(subparsers)           # drivefem static | critical-map | stability
 
 
 def _routed(other, rotor_command):

@@ -284,7 +284,7 @@ def assemble_rotor(rotor: Rotor, *, nonlinear_bearings: str = "linearised") -> R
     if nonlinear_bearings == "linearised" and any(getattr(b, "needs_weight_load", False) for b in rotor.bearings):
         from .bearings.static_load import weight_reactions
 
-        for b, load in zip(rotor.bearings, weight_reactions(rotor)):
+        for b, load in zip(rotor.bearings, weight_reactions(rotor, assemble_rotor)):
             if getattr(b, "needs_weight_load", False):
                 b.set_weight_load(load)
     fields = rotor.fields

@@ -18,12 +18,13 @@ GRAVITY = (0.0, 0.0, -9.81)
 """Default acceleration of gravity (g_x, g_y, g_z), m/s^2: -z is down (as in static_deflection)."""
 
 
-def weight_reactions(rotor, gravity=GRAVITY) -> list[np.ndarray]:
+def weight_reactions(rotor, assemble, gravity=GRAVITY) -> list[np.ndarray]:
     """(F_y, F_z) the shaft presses on each bearing of ``rotor`` (in ``rotor.bearings`` order), N,
-    from its weight under ``gravity`` with rigid supports at the bearings."""
+    from its weight under ``gravity`` with rigid supports at the bearings.  ``assemble``: the rotor
+    assembler (:func:`fem.rotor.assembly.assemble_rotor`, which calls this while it assembles a rotor
+    whose bearings draw their load from the weight; passed in, so this module does not import it)."""
     from dataclasses import replace
 
-    from ..assembly import assemble_rotor
     from ..model import Support
 
     if not rotor.bearings:
@@ -31,7 +32,7 @@ def weight_reactions(rotor, gravity=GRAVITY) -> list[np.ndarray]:
     xs = sorted({float(b.x) for b in rotor.bearings})
     rigid = replace(rotor, bearings=[], pedestals=[],
                     supports=list(rotor.supports) + [Support(x, ("v", "w")) for x in xs])
-    rs = assemble_rotor(rigid)
+    rs = assemble(rigid)
     f = rs.gravity_load(gravity)
     K = rs.K0.tocsc()
     held = np.zeros(rs.n_dofs, dtype=bool)
