@@ -158,6 +158,11 @@ def test_4_over_long_file_name_is_refused_with_a_clear_message(tmp_path, capsys,
     # 252 bytes fit the file system but not with the '.tmp' of the atomic write
     _refused(capsys, ["modal", EX / "two_mass_chain.toml", "--json", "b" * 247 + ".json"], "'.tmp'")
     assert _run(capsys, ["modal", EX / "two_mass_chain.toml", "--json", "c" * 246 + ".json"])[0] == 0
+    # a figure or directory option: its form is decided before the length check (the slow fuzz tier
+    # found --plot of 300 characters at exit 70: is_dir() raised 'File name too long')
+    _refused(capsys, ["modal", EX / "steady_coulomb.toml", "--plot", "d" * 300 + ".png"], "--plot", "at most 251 bytes")
+    _refused(capsys, ["simulate", EX / "discrete_seed000_stick_slip.toml", "--plot", "e" * 300], "--plot",
+             "at most 255 bytes")
 
 
 def test_8_two_outputs_into_one_path_are_refused(tmp_path, capsys, monkeypatch):
@@ -199,7 +204,10 @@ def test_output_to_a_device_is_refused(tmp_path, capsys):
     (["render", "cantilever.toml", "--render", "r", "--mode", "0"], ["--mode = 0"]),
     (["sweep", "hybrid_sweep_vibro_impact.toml", "--workers", "-1"], ["--workers = -1", "0: serial"]),
     (["sweep", "hybrid_sweep_vibro_impact.toml", "--workers", "100000"], ["--workers = 100000"]),
-], ids=["campbell-0", "campbell-neg", "modal-0", "rotor-modal-huge", "render-mode-0", "workers-neg", "workers-huge"])
+    (["campbell", "geared_compressor_train.toml", "--modes", "-3"], ["--modes = -3"]),
+    (["modal", "geared_two_shaft_torsion.toml", "--modes", "0"], ["--modes = 0"]),
+], ids=["campbell-0", "campbell-neg", "modal-0", "rotor-modal-huge", "render-mode-0", "workers-neg", "workers-huge",
+        "train-campbell-neg", "train-modal-0"])
 def test_5_6_out_of_range_options_are_refused_before_the_work(tmp_path, capsys, monkeypatch, argv, words):
     monkeypatch.chdir(tmp_path)
     import fem.app.sweep

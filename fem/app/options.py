@@ -111,6 +111,23 @@ def figure_form(command: str) -> str:
     return FIGURES[command][0]
 
 
+
+def _is_dir(p: Path) -> bool:
+    """``p.is_dir()``, False where the system cannot even look the name up (too long, a loop): the
+    output-path check that follows names the reason."""
+    try:
+        return p.is_dir()
+    except OSError:
+        return False
+
+
+def _exists(p: Path) -> bool:
+    try:
+        return p.exists()
+    except OSError:
+        return False
+
+
 def plot_target(path, command: str, form: str | None = None, option: str = "--plot") -> tuple[Path | None, Path | None]:
     """(file, None) or (None, directory) that ``--plot path`` names for ``command`` (``form``:
     the command's form for this kind of model, default :data:`FIGURES`); ModelError when it does
@@ -120,7 +137,7 @@ def plot_target(path, command: str, form: str | None = None, option: str = "--pl
     suffix = p.suffix.lower()
     what = FIGURES[command][1] if command in FIGURES else "the figures"
     if form == FILE:
-        if p.is_dir():
+        if _is_dir(p):
             raise ModelError("command line", option, str(path), f"a figure file name such as {command}.png "
                              f"(drivefem {command} draws one figure: {what}; this is a directory)")
         if suffix not in FIGURE_SUFFIXES:
@@ -128,13 +145,13 @@ def plot_target(path, command: str, form: str | None = None, option: str = "--pl
                              f"(drivefem {command} draws one figure: {what})")
         return p, None
     if form == DIRECTORY:
-        if suffix in FILE_SUFFIXES or (p.exists() and not p.is_dir()):
+        if suffix in FILE_SUFFIXES or (_exists(p) and not _is_dir(p)):
             raise ModelError("command line", option, str(path), f"a directory (drivefem {command} draws several "
                              f"figures: {what}; e.g. {option} {p.with_suffix('').name or 'figures'}/)")
         return None, p
-    if suffix in FIGURE_SUFFIXES and not p.is_dir():
+    if suffix in FIGURE_SUFFIXES and not _is_dir(p):
         return p, None
-    if (suffix and not p.is_dir()) or (p.exists() and not p.is_dir()):   # out.xyz: neither a figure nor a folder name
+    if (suffix and not _is_dir(p)) or (_exists(p) and not _is_dir(p)):   # out.xyz: neither a figure nor a folder name
         raise ModelError("command line", option, str(path), "a figure file (.png, .svg, .pdf: the main figure) or a "
                          f"directory (every figure) for drivefem {command}"
                          + (f"; {suffix!r} is not a figure format (a new directory takes a name without a suffix)"
@@ -145,7 +162,7 @@ def plot_target(path, command: str, form: str | None = None, option: str = "--pl
 def directory_target(path, option: str, what: str) -> Path:
     """A directory option (``--render``, ``--out``, ``--report``): never a name with a file suffix."""
     p = Path(path)
-    if p.suffix.lower() in FILE_SUFFIXES or (p.exists() and not p.is_dir()):
+    if p.suffix.lower() in FILE_SUFFIXES or (_exists(p) and not _is_dir(p)):
         raise ModelError("command line", option, str(path), f"a directory for {what} (this names a file; "
                          f"e.g. {option} {p.with_suffix('').name or 'pictures'}/)")
     return p

@@ -22,6 +22,7 @@ from discrete.errors import ModelError
 
 from ..output import contract, write_csv, write_json
 from ..output.jsonio import encode
+from .commands import count_option, max_modes
 
 RPM = 30.0 / np.pi
 
@@ -78,6 +79,7 @@ def _load(path):
 # ---------------------------------------------------------------- modal
 def modal(args) -> int:
     _check_outputs(args, "modal", json="json")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     for opt in ("vtu", "png", "plot", "csv"):
         if getattr(args, opt, None):
             raise ModelError("command line", "--" + opt, getattr(args, opt), "--json for a train model file (the "
@@ -116,6 +118,7 @@ def campbell(args) -> int:
     from .rotor import campbell_columns, campbell_table
 
     _check_outputs(args, "campbell", json="json", plot="plot", csv="csv", html="html")
+    count_option(args, "modes", 1, max_modes(), "the number of modes")
     from .progress import count_bar
 
     study = _load(args.model)
