@@ -32,3 +32,15 @@ def test_python_examples_with_dataclasses_and_targets(tmp_path, monkeypatch):
     got = {name: rc for name, rc, _ in demo._python_examples(out)}
     assert got == {"broken.py": 1, "to_dir.py": 0, "with_dataclass.py": 0}
     assert (out / "with_dataclass.png").read_text() == "ok" and (out / "to_dir").is_dir()
+
+
+def test_every_shipped_python_example_has_the_demo_entry():
+    """``make demo`` runs each examples/*.py through ``main(out)``: an example without it failed only in the
+    demo (examples/ross_compressor.py had ``run`` alone)."""
+    import ast
+
+    root = Path(__file__).resolve().parents[1] / "examples"
+    missing = [p.name for p in sorted(root.glob("*.py"))
+               if not any(isinstance(n, ast.FunctionDef) and n.name == "main" and n.args.args
+                          for n in ast.parse(p.read_text()).body)]
+    assert not missing, f"examples without main(out): {missing}"
