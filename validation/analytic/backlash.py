@@ -17,7 +17,8 @@ from a guess that an independent event-located integration (scipy solve_ivp, not
 The force is continuous across the boundaries, so the monodromy matrix is the product of the segments'
 exact state-transition matrices (no saltation): the exact Floquet multipliers.  A fold of the branch of
 such orbits (a jump frequency) is where the Jacobian of the matching equations is singular: solved for
-together with Omega.
+together with Omega.  A period doubling of the branch is where its smallest real multiplier passes
+through -1: Brent's method on mu_min + 1 along the branch, each trial orbit continued from the last.
 """
 from __future__ import annotations
 
@@ -261,3 +262,52 @@ class Oscillator:
             if vals[i] * vals[i + 1] < 0:
                 out.append(brentq(g, w[i], w[i + 1], xtol=1e-15, rtol=1e-15))
         return out
+
+    # ------------------------------------------------------------------ period doubling (flip)
+    def impact_orbit_near_grazing(self, Om: float):
+        """(pattern, u): the single-sided impact orbit just below a grazing frequency of the contact orbit,
+        from the contact orbit's own crossings of x = b as the guess (drive flank -> backlash -> drive flank)."""
+        c0, _, X, Y = self.particular(1, Om)
+        R, ph = math.hypot(X, Y), math.atan2(Y, X)
+        if R <= self.Fm:
+            raise ValueError(f"the contact orbit at Omega = {Om} does not reach x = b")
+        a = math.acos(-self.Fm / R)
+        pattern = [(self.b, 0), (self.b, 1)]
+        guess = np.array([(ph + a) / Om, (ph + 2 * math.pi - a) / Om, -R * Om * math.sin(a)])
+        return pattern, self.solve_orbit(Om, guess, pattern)
+
+    def consistent(self, Om: float, u, pattern, n: int = 4000) -> bool:
+        """Whether the orbit stays in the regions its pattern assumes (no unaccounted crossing)."""
+        m = len(pattern)
+        T = 2 * math.pi / Om
+        t, x, _ = self.samples(Om, u, pattern, n)
+        ts = list(u[:m]) + [u[0] + T]
+        tol = 1e-9 * self.b
+        for i in range(m):
+            sel = (t > ts[i]) & (t < ts[i + 1])
+            r = pattern[i][1]
+            xs = x[sel]
+            if r == 1 and np.any(xs < self.b - tol) or r == -1 and np.any(xs > -self.b + tol) or \
+                    r == 0 and np.any(np.abs(xs) > self.b + tol):
+                return False
+        return True
+
+    def flip(self, Om_a: float, u_a, pattern, Om_b: float) -> tuple[float, np.ndarray, np.ndarray]:
+        """(Omega, u, multipliers) of the period doubling between Om_a and Om_b on the branch through
+        (Om_a, u_a): Brent's method (xtol 1e-14) on the smallest real multiplier + 1, each trial orbit
+        continued from the last in steps of at most 1e-3; the multipliers must be real in the bracket."""
+        state = {"Om": Om_a, "u": np.array(u_a, float)}
+
+        def g(Om):
+            u = self.continue_to(state["Om"], state["u"], pattern, Om, step=1e-3)
+            state.update(Om=Om, u=u)
+            mu = self.multipliers(Om, u, pattern)
+            if np.max(np.abs(mu.imag)) > 0:
+                raise RuntimeError(f"complex multipliers at Omega = {Om}: no flip bracket")
+            return float(np.min(mu.real)) + 1.0
+
+        Om = brentq(g, Om_a, Om_b, xtol=1e-14, rtol=1e-15)
+        u = self.continue_to(state["Om"], state["u"], pattern, Om, step=1e-3)
+        if not self.consistent(Om, u, pattern):
+            raise RuntimeError(f"the orbit at the flip Omega = {Om} leaves its crossing pattern")
+        return Om, u, self.multipliers(Om, u, pattern)
