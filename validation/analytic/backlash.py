@@ -89,9 +89,10 @@ class Oscillator:
         return sla.expm(np.array([[0.0, 1.0], [-a, -2 * self.zeta]]) * tau)
 
     # ------------------------------------------------------------------ reference integration (guess)
-    def integrate(self, Om: float, x0: float, v0: float, periods: int, t0: float = 0.0):
-        """Event-located solve_ivp (DOP853, rtol 1e-12) over ``periods`` forcing periods: (t, x, v) and the
-        boundary crossings [(t, x, v)] (an independent route to a starting guess)."""
+    def integrate(self, Om: float, x0: float, v0: float, periods: int, t0: float = 0.0, rtol: float = 1e-12,
+                  steps: int = 50):
+        """Event-located solve_ivp (DOP853, rtol 1e-12, at most T/steps per step) over ``periods`` forcing
+        periods: (t, x, v) and the boundary crossings [(t, x, v)] (an independent route to a starting guess)."""
         b = self.b
 
         def rhs(t, y):
@@ -104,8 +105,8 @@ class Oscillator:
             return y[0] + b
 
         T = 2 * math.pi / Om
-        sol = solve_ivp(rhs, (t0, t0 + periods * T), [x0, v0], method="DOP853", rtol=1e-12, atol=1e-14,
-                        events=(up, lo), dense_output=True, max_step=T / 50)
+        sol = solve_ivp(rhs, (t0, t0 + periods * T), [x0, v0], method="DOP853", rtol=rtol, atol=1e-2 * rtol,
+                        events=(up, lo), dense_output=True, max_step=T / steps)
         cross = sorted([(t, y[0], y[1]) for ev, ys in zip(sol.t_events, sol.y_events) for t, y in zip(ev, ys)])
         return sol, cross
 

@@ -406,8 +406,11 @@ def backlash_period_doubling():
 
     Reference (validation/analytic/backlash.py, independent of the package): the exact single-impact orbit
     continued from grazing, its exact multipliers, Brent's method on mu_min + 1 along the branch (xtol 1e-14):
-    the flip frequency; the exact orbit there has mu = -1 to round-off (checked to 1e-12).  Package: the HB
-    continuation of the train (41 harmonics, exact kink integration, bifurcations by test functions, the
+    the flip frequency; the exact orbit there has mu = -1 to round-off (checked to 1e-12); an event-located
+    solve_ivp run (rtol 1e-9, 150 periods) settles on period 1 at +0.03 above it and on period 2 at -0.03
+    below it (Poincare distances over one period measured 8e-7 above and 0.12 below, over two periods 1e-8
+    below: the doubling is supercritical).  Package: the HB
+    continuation of the train (41 harmonics, the mesh law sampled by AFT, bifurcations by test functions, the
     period doubling re-located by the package with 54 harmonics) over 1.15 .. 1.7 omega_n must report exactly
     one bifurcation, a period doubling, at the exact frequency; the package's shooting (exact event-driven
     period map, finite-difference monodromy) at the exact flip frequency from the exact orbit's state must
@@ -453,6 +456,19 @@ def backlash_period_doubling():
     Om_pd, u_pd, mu_pd = osc.flip(grid[i], us[i], pat, grid[i + 1])
     out.append(check("exact orbit at the flip: multiplier -1", src, "min mu (exact)", -1.0, float(np.min(mu_pd.real)),
                      1e-12, scale=1.0, note=f"Omega = {Om_pd:.10f}, multipliers {np.sort(mu_pd.real)}"))
+    # independent of the multipliers: the settled response (solve_ivp, 150 periods from x = b + F_m at rest)
+    # repeats every period just above the flip and only every second period just below it
+    def settled(Om):
+        sol, _ = osc.integrate(Om, osc.b + osc.Fm, 0.0, 150, rtol=1e-9, steps=20)
+        T = 2 * math.pi / Om
+        P = [sol.sol(sol.t[-1] - k * T) for k in range(3)]
+        return float(np.linalg.norm(P[0] - P[1])), float(np.linalg.norm(P[0] - P[2]))
+    above, below = settled(Om_pd + 0.03), settled(Om_pd - 0.03)
+    out.append(claim("time integration: period 1 above the flip, period 2 below", src + "; scipy solve_ivp",
+                     "|P - P(T)| < 1e-3 at +0.03; |P - P(T)| > 1e-2 and |P - P(2T)| < 1e-4 at -0.03",
+                     above[0] < 1e-3 and below[0] > 1e-2 and below[1] < 1e-4,
+                     note=f"Poincare distances over T, 2T: above {above[0]:.2g}, {above[1]:.2g}; "
+                          f"below {below[0]:.2g}, {below[1]:.2g}"))
     # package: HB continuation with bifurcations
     doc["steady"].update(omega=[1.7 * wn, 1.15 * wn], harmonics=41, bifurcations=True)
     r = Study.parse(doc).forced()
