@@ -62,7 +62,7 @@ PINNED = {
     "rotor_rub_runup.toml": ["rotor-rub-runup-example"],
     "geared_two_shaft_torsion.toml": ["geared-two-shaft-equivalent"],
     "geared_ross_two_shaft.toml": ["geared-lateral-torsional-dense", "geared-lateral-torsional-ross"],
-    "geared_rattle.toml": ["geared-backlash-kahraman-singh"],
+    "geared_rattle.toml": ["geared-backlash-kahraman-singh", "geared-backlash-period-doubling"],
     "geared_mesh_parametric.toml": ["geared-mesh-parametric-hill"],
     "geared_two_stage.toml": ["geared-two-stage-loads"],
     "geared_compressor_train.toml": ["geared-compressor-campbell"],

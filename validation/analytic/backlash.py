@@ -17,7 +17,8 @@ from a guess that an independent event-located integration (scipy solve_ivp, not
 The force is continuous across the boundaries, so the monodromy matrix is the product of the segments'
 exact state-transition matrices (no saltation): the exact Floquet multipliers.  A fold of the branch of
 such orbits (a jump frequency) is where the Jacobian of the matching equations is singular: solved for
-together with Omega.
+together with Omega.  A period doubling of the branch is where its smallest real multiplier passes
+through -1: Brent's method on mu_min + 1 along the branch, each trial orbit continued from the last.
 """
 from __future__ import annotations
 
@@ -88,9 +89,10 @@ class Oscillator:
         return sla.expm(np.array([[0.0, 1.0], [-a, -2 * self.zeta]]) * tau)
 
     # ------------------------------------------------------------------ reference integration (guess)
-    def integrate(self, Om: float, x0: float, v0: float, periods: int, t0: float = 0.0):
-        """Event-located solve_ivp (DOP853, rtol 1e-12) over ``periods`` forcing periods: (t, x, v) and the
-        boundary crossings [(t, x, v)] (an independent route to a starting guess)."""
+    def integrate(self, Om: float, x0: float, v0: float, periods: int, t0: float = 0.0, rtol: float = 1e-12,
+                  steps: int = 50):
+        """Event-located solve_ivp (DOP853, rtol 1e-12, at most T/steps per step) over ``periods`` forcing
+        periods: (t, x, v) and the boundary crossings [(t, x, v)] (an independent route to a starting guess)."""
         b = self.b
 
         def rhs(t, y):
@@ -103,8 +105,8 @@ class Oscillator:
             return y[0] + b
 
         T = 2 * math.pi / Om
-        sol = solve_ivp(rhs, (t0, t0 + periods * T), [x0, v0], method="DOP853", rtol=1e-12, atol=1e-14,
-                        events=(up, lo), dense_output=True, max_step=T / 50)
+        sol = solve_ivp(rhs, (t0, t0 + periods * T), [x0, v0], method="DOP853", rtol=rtol, atol=1e-2 * rtol,
+                        events=(up, lo), dense_output=True, max_step=T / steps)
         cross = sorted([(t, y[0], y[1]) for ev, ys in zip(sol.t_events, sol.y_events) for t, y in zip(ev, ys)])
         return sol, cross
 
@@ -261,3 +263,52 @@ class Oscillator:
             if vals[i] * vals[i + 1] < 0:
                 out.append(brentq(g, w[i], w[i + 1], xtol=1e-15, rtol=1e-15))
         return out
+
+    # ------------------------------------------------------------------ period doubling (flip)
+    def impact_orbit_near_grazing(self, Om: float):
+        """(pattern, u): the single-sided impact orbit just below a grazing frequency of the contact orbit,
+        from the contact orbit's own crossings of x = b as the guess (drive flank -> backlash -> drive flank)."""
+        c0, _, X, Y = self.particular(1, Om)
+        R, ph = math.hypot(X, Y), math.atan2(Y, X)
+        if R <= self.Fm:
+            raise ValueError(f"the contact orbit at Omega = {Om} does not reach x = b")
+        a = math.acos(-self.Fm / R)
+        pattern = [(self.b, 0), (self.b, 1)]
+        guess = np.array([(ph + a) / Om, (ph + 2 * math.pi - a) / Om, -R * Om * math.sin(a)])
+        return pattern, self.solve_orbit(Om, guess, pattern)
+
+    def consistent(self, Om: float, u, pattern, n: int = 4000) -> bool:
+        """Whether the orbit stays in the regions its pattern assumes (no unaccounted crossing)."""
+        m = len(pattern)
+        T = 2 * math.pi / Om
+        t, x, _ = self.samples(Om, u, pattern, n)
+        ts = list(u[:m]) + [u[0] + T]
+        tol = 1e-9 * self.b
+        for i in range(m):
+            sel = (t > ts[i]) & (t < ts[i + 1])
+            r = pattern[i][1]
+            xs = x[sel]
+            if r == 1 and np.any(xs < self.b - tol) or r == -1 and np.any(xs > -self.b + tol) or \
+                    r == 0 and np.any(np.abs(xs) > self.b + tol):
+                return False
+        return True
+
+    def flip(self, Om_a: float, u_a, pattern, Om_b: float) -> tuple[float, np.ndarray, np.ndarray]:
+        """(Omega, u, multipliers) of the period doubling between Om_a and Om_b on the branch through
+        (Om_a, u_a): Brent's method (xtol 1e-14) on the smallest real multiplier + 1, each trial orbit
+        continued from the last in steps of at most 1e-3; the multipliers must be real in the bracket."""
+        state = {"Om": Om_a, "u": np.array(u_a, float)}
+
+        def g(Om):
+            u = self.continue_to(state["Om"], state["u"], pattern, Om, step=1e-3)
+            state.update(Om=Om, u=u)
+            mu = self.multipliers(Om, u, pattern)
+            if np.max(np.abs(mu.imag)) > 0:
+                raise RuntimeError(f"complex multipliers at Omega = {Om}: no flip bracket")
+            return float(np.min(mu.real)) + 1.0
+
+        Om = brentq(g, Om_a, Om_b, xtol=1e-14, rtol=1e-15)
+        u = self.continue_to(state["Om"], state["u"], pattern, Om, step=1e-3)
+        if not self.consistent(Om, u, pattern):
+            raise RuntimeError(f"the orbit at the flip Omega = {Om} leaves its crossing pattern")
+        return Om, u, self.multipliers(Om, u, pattern)

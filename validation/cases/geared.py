@@ -394,6 +394,115 @@ def backlash_kahraman_singh():
     return out
 
 
+@case("geared-backlash-period-doubling", group="geared", slow=True)
+def backlash_period_doubling():
+    """(d') The period doubling of Kahraman & Singh's gear-pair oscillator (J. Sound Vib. 142 (1990) 49; the
+    subharmonic regime of their light-damping, low-mean-load cases) on the same train as (d),
+    examples/geared_rattle.toml with the torque ripple raised to 105 N m: zeta = 0.05, F_m = 0.1, F_a = 0.15.
+    Below the grazing frequency of the contact orbit (Omega = 1.5785) the period-1 orbit has single-sided
+    impacts (drive flank -> backlash -> drive flank); its complex multiplier pair meets on the negative real
+    axis near 1.29 and one real multiplier passes through -1 at Omega = 1.2213045 (found here numerically
+    with the exact map; the exact orbit leaves no other multiplier outside the unit circle on 1.15 .. 1.5785).
+
+    Reference (validation/analytic/backlash.py, independent of the package): the exact single-impact orbit
+    continued from grazing, its exact multipliers, Brent's method on mu_min + 1 along the branch (xtol 1e-14):
+    the flip frequency; the exact orbit there has mu = -1 to round-off (checked to 1e-12); an event-located
+    solve_ivp run (rtol 1e-9, 150 periods) settles on period 1 at +0.03 above it and on period 2 at -0.03
+    below it (Poincare distances over one period measured 8e-7 above and 0.12 below, over two periods 1e-8
+    below: the doubling is supercritical).  Package: the HB
+    continuation of the train (41 harmonics, the mesh law sampled by AFT, bifurcations by test functions, the
+    period doubling re-located by the package with 54 harmonics) over 1.15 .. 1.7 omega_n must report exactly
+    one bifurcation, a period doubling, at the exact frequency; the package's shooting (exact event-driven
+    period map, finite-difference monodromy) at the exact flip frequency from the exact orbit's state must
+    give the exact multipliers.  Tolerances: HB truncates the kinked mesh force, and the flip frequency
+    converges non-monotonically with the harmonics: measured relative errors 4.1e-3 (H = 25), 1.7e-3 (33),
+    3.5e-4 (41), 5.0e-4 (54), 3.6e-6 (57), 1.7e-4 (76) -- tolerance 1e-3 at H = 41 (twice the largest
+    error measured at H >= 41).  The mesh law is sampled by AFT (MeshContact has no exactly integrated
+    piecewise law), so HB's multipliers come from the midpoint rule on max(512, 2 N_fine) uniform intervals:
+    measured against 4096 intervals they are off by up to 1.6e-2 near the flip and jump between neighbouring
+    points (psi_PD is not smooth), which is why the location converges non-monotonically and why its
+    critical multiplier (|mu + 1| = 6.3e-3, 4.5e-3, 2.3e-3 at H = 25, 41, 57) gets 1e-2; with 4096
+    intervals the HB-41 points put the crossing at 1.2211 (1.6e-4).  Shooting's multipliers 1e-6 (its
+    finite-difference monodromy, as in (d))."""
+    from discrete.steady import ShootingModel
+    from fem.modelfile.source import read_toml
+    from fem.study import Study
+
+    doc = read_toml(EXAMPLES / "geared_rattle.toml")
+    doc["force"][0]["amplitude"] = 105.0                          # N m: F_a = 0.15 k b
+    study = Study.parse(doc)
+    osc, wn, b, el_name = _ks(study)
+    src = SRC_KS + "; period doubling: Brent on the exact multiplier mu_min + 1 along the exact branch"
+    out = [check("K&S oscillator: the model's dimensionless parameters", src, "zeta, F_m, F_a (sum)",
+                 0.05 + 0.1 + 0.15, osc.zeta + osc.Fm + osc.Fa, 1e-6)]
+    # exact: the single-impact branch from grazing down to 1.15, the flip bracketed on it
+    graze = max(osc.grazing_frequencies(0.5, 2.5))
+    grid = np.linspace(graze - 1e-3, 1.15, 44)
+    pat, u = osc.impact_orbit_near_grazing(grid[0])
+    us, mins, ok = [u], [], True
+    for a, c in zip(grid[:-1], grid[1:]):
+        us.append(osc.continue_to(a, us[-1], pat, c, step=2e-3))
+    for Om, uu in zip(grid, us):
+        mu = osc.multipliers(Om, uu, pat)
+        mins.append(float(np.min(mu.real)) + 1.0 if np.all(mu.imag == 0) else 1.0)
+        ok = ok and osc.consistent(Om, uu, pat) and np.all(np.abs(mu) < 1 + 1e-12) == (mins[-1] > 0)
+    flips = [i for i in range(len(grid) - 1) if mins[i] * mins[i + 1] < 0]
+    out.append(claim("exact branch: one flip on 1.15 .. grazing, nothing else leaves the unit circle", src,
+                     "one sign change of mu_min + 1; unstable only by it; pattern kept",
+                     len(flips) == 1 and ok, note=f"grazing {graze:.7f}, flips between {[grid[i] for i in flips]}"))
+    if not flips:
+        return out
+    i = flips[0]
+    Om_pd, u_pd, mu_pd = osc.flip(grid[i], us[i], pat, grid[i + 1])
+    out.append(check("exact orbit at the flip: multiplier -1", src, "min mu (exact)", -1.0, float(np.min(mu_pd.real)),
+                     1e-12, scale=1.0, note=f"Omega = {Om_pd:.10f}, multipliers {np.sort(mu_pd.real)}"))
+    # independent of the multipliers: the settled response (solve_ivp, 150 periods from x = b + F_m at rest)
+    # repeats every period just above the flip and only every second period just below it
+    def settled(Om):
+        sol, _ = osc.integrate(Om, osc.b + osc.Fm, 0.0, 150, rtol=1e-9, steps=20)
+        T = 2 * math.pi / Om
+        P = [sol.sol(sol.t[-1] - k * T) for k in range(3)]
+        return float(np.linalg.norm(P[0] - P[1])), float(np.linalg.norm(P[0] - P[2]))
+    above, below = settled(Om_pd + 0.03), settled(Om_pd - 0.03)
+    out.append(claim("time integration: period 1 above the flip, period 2 below", src + "; scipy solve_ivp",
+                     "|P - P(T)| < 1e-3 at +0.03; |P - P(T)| > 1e-2 and |P - P(2T)| < 1e-4 at -0.03",
+                     above[0] < 1e-3 and below[0] > 1e-2 and below[1] < 1e-4,
+                     note=f"Poincare distances over T, 2T: above {above[0]:.2g}, {above[1]:.2g}; "
+                          f"below {below[0]:.2g}, {below[1]:.2g}"))
+    # package: HB continuation with bifurcations
+    doc["steady"].update(omega=[1.7 * wn, 1.15 * wn], harmonics=41, bifurcations=True)
+    r = Study.parse(doc).forced()
+    pds = [bf for bf in r.bifurcations if bf.kind == "period_doubling"]
+    out.append(claim("HB-41: one bifurcation on 1.15 .. 1.7 omega_n, a period doubling", src,
+                     "period doublings == 1, others == 0", len(pds) == 1 and len(r.bifurcations) == 1,
+                     note=f"{[bf.line() for bf in r.bifurcations]}"))
+    bf = min(pds, key=lambda x: abs(x.omega / wn - Om_pd)) if pds else None
+    out.append(check("period-doubling frequency (HB-41)", src, "Omega / omega_n", Om_pd,
+                     bf.omega / wn if bf else float("nan"), 1e-3, note=bf.note if bf else "missing"))
+    if bf is not None and bf.check[0] is not None:
+        out.append(check(f"period-doubling frequency (HB re-located with {bf.check[1]} harmonics)", src,
+                         "Omega / omega_n", Om_pd, bf.check[0] / wn, 1e-3))
+    mu_hb = bf.multiplier if bf is not None and bf.multiplier is not None else complex("nan")
+    out.append(check("critical multiplier (HB-41: monodromy of the HB orbit)", src, "mu", -1.0, float(np.real(mu_hb)), 1e-2, scale=1.0,
+                     note=f"mu = {mu_hb}"))
+    # package: shooting at the exact flip frequency from the exact orbit's state
+    spec = study.problem_spec()
+    p0 = spec.problem(1.0)
+    g = p0.gf[[el.name for el in p0.elements].index(el_name)]
+    sh = ShootingModel(spec.problem, steps_per_period=48)
+    w = Om_pd * wn
+    xs, vs = _exact_at_zero(osc, Om_pd, u_pd, pat)
+    y0 = np.array([xs * b / g[0], vs * b * wn / g[0]])
+    y, _ = sh.solve(y0, w, scale=np.abs(y0) + 1e-300)
+    mu_sh = np.sort(np.real(sh.floquet(y, w, np.abs(y) + 1e-300)))
+    mu_ex = np.sort(np.real(mu_pd))
+    out.append(check("critical multiplier (shooting at the exact flip)", src, "min mu", mu_ex[0], mu_sh[0], 1e-6,
+                     scale=1.0, note=f"shooting multipliers {mu_sh}"))
+    out.append(check("other multiplier (shooting at the exact flip)", src, "max mu", mu_ex[1], mu_sh[1], 1e-6,
+                     scale=1.0))
+    return out
+
+
 def _exact_at_zero(osc, Om, u, pat):
     """(x, x') of the exact orbit at t = 0 (mod the period): the shooting section of the package."""
     T = 2 * math.pi / Om
