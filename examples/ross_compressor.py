@@ -49,8 +49,10 @@ def run(out_dir: Path | None = None):
     return modes, camp, shown, path
 
 
-if __name__ == "__main__":
-    m, c, shown, p = run(Path(sys.argv[1]) if len(sys.argv) > 1 else None)
+def main(out_dir: str | Path | None = None) -> dict:
+    """Print the modes at 4000 rev/min and the critical speeds; the Campbell diagram into ``out_dir``
+    (the entry point ``drivefem demo`` calls, as for the other examples)."""
+    m, c, shown, p = run(Path(out_dir) if out_dir is not None else None)
     lat = ~m.rigid & (m.omega_damped_rad_s > 0)
     print("4000 rev/min: damped frequencies [rad/s]", np.round(m.omega_damped_rad_s[lat], 4))
     print("              log decrements          ", np.round(m.log_decrement[lat], 4))
@@ -58,3 +60,8 @@ if __name__ == "__main__":
         print(f"critical speed {cs.speed_rpm:9.1f} rev/min, {cs.whirl} whirl, log dec {cs.log_decrement:.3f}")
     if p:
         print(f"wrote {p}")
+    return {"critical_speeds_rpm": [cs.speed_rpm for cs in shown.critical_speeds], "figure": p}
+
+
+if __name__ == "__main__":
+    main(sys.argv[1] if len(sys.argv) > 1 else None)
