@@ -52,6 +52,8 @@ def run(out_dir: Path | None = None):
 def main(out_dir: str | Path | None = None) -> dict:
     """Print the modes at 4000 rev/min and the critical speeds; the Campbell diagram into ``out_dir``
     (the entry point ``drivefem demo`` calls, as for the other examples)."""
+    if out_dir is not None:
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
     m, c, shown, p = run(Path(out_dir) if out_dir is not None else None)
     lat = ~m.rigid & (m.omega_damped_rad_s > 0)
     print("4000 rev/min: damped frequencies [rad/s]", np.round(m.omega_damped_rad_s[lat], 4))

@@ -129,6 +129,7 @@ CAPTIONS = {
                                                                       "rotor (pyvista)"),
     "python rotor_friswell: rotor_whirl_backward": ("Python examples", "3D whirl of a backward mode of Friswell's "
                                                                        "rotor (pyvista)"),
+    "python rotor_friswell: rotor_whirl": ("Python examples", "Whirl animation of a mode of Friswell's rotor (GIF)"),
     "python rotor_friswell: rotor_campbell": ("Python examples", "Campbell diagram of Friswell's damped rotor"),
     "python rotor_friswell: rotor_bode": ("Python examples", "Bode plot of Friswell's rotor"),
     "python rotor_friswell: rotor_polar": ("Python examples", "Polar plot of Friswell's rotor"),
