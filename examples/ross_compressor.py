@@ -49,9 +49,8 @@ def run(out_dir: Path | None = None):
     return modes, camp, shown, path
 
 
-def main(out_dir: str | Path | None = None) -> dict:
-    """Print the modes at 4000 rev/min and the critical speeds; the Campbell diagram into ``out_dir``
-    (the entry point ``drivefem demo`` calls, as for the other examples)."""
+def main(out_dir=None):
+    """The demo's entry (``drivefem demo`` calls ``main(OUT_DIR)``): run, print the table, write the figure."""
     if out_dir is not None:
         Path(out_dir).mkdir(parents=True, exist_ok=True)
     m, c, shown, p = run(Path(out_dir) if out_dir is not None else None)
@@ -62,7 +61,7 @@ def main(out_dir: str | Path | None = None) -> dict:
         print(f"critical speed {cs.speed_rpm:9.1f} rev/min, {cs.whirl} whirl, log dec {cs.log_decrement:.3f}")
     if p:
         print(f"wrote {p}")
-    return {"critical_speeds_rpm": [cs.speed_rpm for cs in shown.critical_speeds], "figure": p}
+    return m, c, shown, p
 
 
 if __name__ == "__main__":
