@@ -79,8 +79,8 @@ def main(out: str | Path = "docs/img/hybrid_afc_curves.png") -> Path:
                 "steady": {**doc["steady"], "omega": [250.0, 450.0], "stability": False, "ds_max": 0.05}}
         r1 = Study.parse(sdof).forced()
         a1.plot(r1.omega, r1.response, ":", color="0.3", lw=1.4, label="1-DOF (mode 1 at the stop)")
-        a1.set_xlabel("forcing frequency omega, rad/s")
-        a1.set_ylabel("peak stop force, N")
+        a1.set_xlabel("forcing frequency omega [rad/s]")
+        a1.set_ylabel("peak stop force [N]")
         a1.set_title("cantilever, elastic stop 1 mm above x = 0.45 m, tip force 10 N", fontsize=10)
         # friction rod: curve, simulations, Den Hartog's exact 1-DOF solution of mode 1 at the tip
         doc = read_toml(EXAMPLES / "hybrid_afc_friction_rod.toml")
@@ -97,8 +97,8 @@ def main(out: str | Path = "docs/img/hybrid_afc_curves.png") -> Path:
         X = [den_hartog_damped(m.m1, m.k1, m.c1, doc["friction"][0]["kinetic"], doc["force"][0]["amplitude"], z * w1)
              for z in zz]
         a2.plot(zz, np.array(X) / 1e-6, ":", color="0.3", lw=1.4, label="1-DOF: Den Hartog (mode 1 at the tip)")
-        a2.set_xlabel("z = omega / omega_1")
-        a2.set_ylabel("tip amplitude, um")
+        a2.set_xlabel("z = omega / omega_1 [-]")
+        a2.set_ylabel("tip amplitude [um]")
         a2.set_title("rod, dry-friction damper 40 N and force 100 N at the tip", fontsize=10)
     for ax in (a1, a2):
         ax.grid(alpha=0.3)

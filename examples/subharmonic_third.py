@@ -51,7 +51,8 @@ def main(out: str | Path = "docs/img/subharmonic_third.png") -> dict:
     plot_orbit_overlay([(t, q, "Moreau-Jean time run (200 steps / period)", "-"),
                         (th2[keep], qh2[keep], "HB orbit (9 harmonics of omega = Omega/3)", "--"),
                         (t, 0.1 * np.cos(3 * OMEGA * t), f"forcing F3 cos(Omega t) / {F3 / 0.1:g}", ":")], out,
-                       title=f"1/3 subharmonic: omega-component {a_time:.5f} (time run), {a_hb:.5f} (HB); "
+                       ylabel="displacement q of the mass [m]",
+                       title=f"{doc['title']}\n1/3 subharmonic: omega-component {a_time:.5f} (time run), {a_hb:.5f} (HB); "
                              f"forcing period {Tf:.3f} s")
     print(f"omega-component: time run {a_time:.6f}, HB {a_hb:.6f}")
     return {"time_run": float(a_time), "hb": a_hb}

@@ -105,7 +105,7 @@ def _plot_errors(outcomes, path: Path) -> None:
     ax.scatter(tol, y, s=8, marker="|", c="k", label="tolerance")
     ax.set_xscale("log")
     ax.set_yticks([])
-    ax.set_xlabel("relative error")
+    ax.set_xlabel("relative error [-]")
     ax.set_title("validation checks: error (dot) vs tolerance (bar)")
     ax.legend(fontsize=8)
     fig.tight_layout()

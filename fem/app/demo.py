@@ -21,16 +21,17 @@ def _command(path: Path) -> tuple[str, object]:
     return (an.type if an is not None else "modal"), doc
 
 
-def _python_examples(out: Path):
-    """Run every examples/*.py through its ``main(out)`` (a directory for ``out_dir``, else a file
-    named after the example, with the suffix of the default output): (name, exit code, seconds)."""
+def _python_examples(out: Path, paths=None):
+    """Run every examples/*.py (or the given ``paths``) through its ``main(out)`` (a directory for
+    ``out_dir``, else a file named after the example, with the suffix of the default output):
+    (name, exit code, seconds)."""
     import importlib.util
     import inspect
     import sys
     import traceback
 
     out.mkdir(parents=True, exist_ok=True)
-    for path in sorted(EXAMPLES.glob("*.py")):
+    for path in (sorted(EXAMPLES.glob("*.py")) if paths is None else paths):
         spec = importlib.util.spec_from_file_location(f"drivefem_example_{path.stem}", path)
         module = importlib.util.module_from_spec(spec)
         sys.modules[spec.name] = module          # dataclasses look their module up while it loads

@@ -95,6 +95,14 @@ CAPTIONS = {
     "critical-map rotor: map": ("Rotordynamics", "Undamped critical speed map with the model's bearings overlaid"),
     "stability rotor: stability": ("Rotordynamics", "Log decrement against speed (stability threshold) and the API "
                                                     "Level I screening"),
+    "campbell train: campbell": ("Geared trains", "Campbell diagram of a geared train, each shaft at its own "
+                                                  "speed, with the 1x lines of every shaft and the tooth-pass line"),
+    "parametric train: parametric": ("Geared trains", "Floquet chart of the mesh-stiffness variation: max "
+                                                      "|multiplier| over speed and depth, edges by root finding"),
+    "simulate train: mesh_forces": ("Geared trains", "Force of every connection (gear mesh) against time, contact "
+                                                     "events marked"),
+    "simulate train: bearings": ("Geared trains", "Radial force of every bearing of a geared train against time"),
+    "simulate train: phase": ("Geared trains", "Each mesh's deflection against its rate (phase portrait)"),
     "python absorber_design: absorber_afc": ("Python examples", "Tuned vibration absorber: amplitude-frequency "
                                                                 "curves"),
     "python cam_report: cam_laws": ("Python examples", "Cam laws and their transfer functions"),
@@ -106,6 +114,22 @@ CAPTIONS = {
     "python hybrid_afc_figure: figure": ("Python examples", "Amplitude-frequency curves of hybrid FE models"),
     "python parametric_chart: parametric_book": ("Python examples", "The textbook's Fig. 7.4 recomputed"),
     "python parametric_chart: parametric_drive": ("Python examples", "Stability chart of a two-mass drive"),
+    "python geared_trains: geared_two_stage_loads": ("Python examples", "Dynamic load factor of both meshes and "
+                                                                        "peak bearing forces over the motor speed"),
+    "python geared_trains: geared_two_stage_rattle": ("Python examples", "Two-stage gearbox in time with its "
+                                                                         "backlash: mesh forces and contact events"),
+    "python geared_trains: geared_compressor_campbell": ("Python examples", "Campbell diagram of a geared "
+                                                                            "compressor train"),
+    "python geared_trains: geared_rattle_afc": ("Python examples", "Gear-rattle curve by harmonic balance, "
+                                                                   "shooting and the exact orbits"),
+    "python geared_trains: geared_mesh_parametric": ("Python examples", "Floquet chart of a mesh-stiffness "
+                                                                        "variation"),
+    "python rotor_friswell: rotor_static": ("Python examples", "Static deflection of Friswell's rotor"),
+    "python rotor_friswell: rotor_whirl_forward": ("Python examples", "3D whirl of a forward mode of Friswell's "
+                                                                      "rotor (pyvista)"),
+    "python rotor_friswell: rotor_whirl_backward": ("Python examples", "3D whirl of a backward mode of Friswell's "
+                                                                       "rotor (pyvista)"),
+    "python rotor_friswell: rotor_whirl": ("Python examples", "Whirl animation of a mode of Friswell's rotor (GIF)"),
     "python rotor_friswell: rotor_campbell": ("Python examples", "Campbell diagram of Friswell's damped rotor"),
     "python rotor_friswell: rotor_bode": ("Python examples", "Bode plot of Friswell's rotor"),
     "python rotor_friswell: rotor_polar": ("Python examples", "Polar plot of Friswell's rotor"),
@@ -119,7 +143,7 @@ CAPTIONS = {
     "python subharmonic_third: figure": ("Python examples", "The 1/3 subharmonic of a cubic spring: time run "
                                                             "against harmonic balance"),
 }
-SECTIONS = ("Modes", "Forced response", "Time simulation", "Rotordynamics", "Parametric vibrations",
+SECTIONS = ("Modes", "Forced response", "Time simulation", "Rotordynamics", "Geared trains", "Parametric vibrations",
             "Python examples", "Validation report")
 
 

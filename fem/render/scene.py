@@ -141,6 +141,12 @@ def _markers(model, ends, radii, y_at) -> list:
     return out
 
 
+def _model_title(model) -> str:
+    """The model file's title as the picture's first line ("" without one)."""
+    title = " ".join(str(getattr(model, "title", "") or "").split())
+    return f"{title}\n" if title else ""
+
+
 def mode_scene(fe, modal, r: int, kind: str | None = None, factor: float = 1.0) -> ModeScene:
     """The scene of mode ``r`` (0-based) of the 1D FE model ``fe``; ``factor`` multiplies
     the displayed deformation (animation phase), not the colours."""
@@ -160,7 +166,7 @@ def mode_scene(fe, modal, r: int, kind: str | None = None, factor: float = 1.0) 
     xs, (vs, amps), rs = _with_steps(x, [v, amp], ends, radii_d)
     freq = modal.frequencies_hz[r]
     label = {"bending": "w", "axial": "u", "torsion": "theta"}[physics]
-    title = f"mode {r + 1}: f = {freq:.5g} Hz" + (f"  ({kind})" if kind else f"  ({physics})")
+    title = _model_title(model) + f"mode {r + 1}: f = {freq:.5g} Hz" + (f"  ({kind})" if kind else f"  ({physics})")
     if enlarge > 1.0:
         title += f"\nradius x{enlarge:.3g} for display"
     zeros = np.zeros_like(xs)
@@ -243,7 +249,7 @@ def solid_scene(solid, modal, r: int, kind: str | None = None, factor: float = 1
     warped.point_data["amplitude"] = mag / peak
     lines = edges.copy()
     lines.points = edges.points + scale * factor * np.asarray(edges.point_data["displacement"])
-    title = f"mode {r + 1}: f = {modal.frequencies_hz[r]:.5g} Hz  ({kind or 'solid'})"
+    title = _model_title(solid.model) + f"mode {r + 1}: f = {modal.frequencies_hz[r]:.5g} Hz  ({kind or 'solid'})"
     motion = [(surf.points.copy(), scale * disp), (edges.points.copy(), scale * np.asarray(edges.point_data["displacement"]))]
     return ModeScene(title=title, view="oblique", deformed=warped, undeformed=[surf.copy()],
                      lines=[lines], scale=scale, amplitude_label="displacement magnitude", linear_motion=motion)

@@ -34,7 +34,7 @@ def _dominant(labels) -> str:
 def _wrap(text: str, width: int = 90) -> str:
     import textwrap
 
-    return "\n".join(textwrap.wrap(text, width)) if text else text
+    return "\n".join(textwrap.wrap(text, width, break_on_hyphens=False)) if text else text
 
 
 def _layout(fig, path) -> Path:

@@ -29,7 +29,7 @@ def plot_spectrum_vs_n(sweep, path, title: str | None = None):
         ax.axhline(lo, color="k", lw=0.6, ls=":")
     ax.axhline(sweep.k, color="tab:red", lw=0.8)
     ax.set_yscale("log")
-    ax.set_xlabel("number of identical mechanisms n (totals fixed)")
+    ax.set_xlabel("number of identical mechanisms n [-] (totals fixed)")
     ax.set_ylabel("natural frequency p [rad/s]")
     ax.set_ylim(0.5 * min(w.min() for w in sweep.roots), 1.3 * sweep.upper_band.max())
     ax.set_title(title or "Spectrum of a regular drive vs n")

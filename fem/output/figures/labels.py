@@ -63,10 +63,13 @@ def _undrawn_ticks(fig) -> set:
     for ax in fig.axes:
         for axis, (lo, hi) in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
             lo, hi = min(lo, hi), max(lo, hi)
+            log = axis.get_scale() == "log"        # a log axis: the tolerance is relative to each limit
             tol = 1e-9 * max(abs(lo), abs(hi), 1e-300)
+            inside = (lambda x: lo * (1 - 1e-9) <= x <= hi * (1 + 1e-9)) if log else \
+                (lambda x: lo - tol <= x <= hi + tol)
             for tick in axis.get_major_ticks() + axis.get_minor_ticks():
                 loc = tick.get_loc()
-                if loc is None or not (lo - tol <= loc <= hi + tol) or not tick.get_visible():
+                if loc is None or not inside(loc) or not tick.get_visible():
                     out.update({id(tick.label1), id(tick.label2)})
     return out
 

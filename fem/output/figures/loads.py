@@ -3,6 +3,7 @@ of a frequency response (:func:`plot_output_amplitudes`), legends with the names
 from __future__ import annotations
 
 import pathlib
+import textwrap
 
 import numpy as np
 
@@ -127,7 +128,9 @@ def plot_output_amplitudes(outputs, path, title: str = "", max_lines: int = 8) -
         ax.set_ylabel("amplitude of " + _axis_label([outputs.channels[k] for k in ks]), fontsize=8)
         ax.legend(fontsize=7, loc="best")
     axes[-1, 0].set_xlabel("angular frequency omega [rad/s]")
-    axes[0, 0].set_title((title + ": " if title else "") + "named outputs (loads, reactions)", fontsize=9)
+    axes[0, 0].set_title(textwrap.fill((title + ": " if title else "") + "named outputs (loads, reactions)", 110,
+                                       break_on_hyphens=False),
+                         fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

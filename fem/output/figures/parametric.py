@@ -13,6 +13,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
+def _merged_centre_ticks(centres, w1: float, close: float) -> list[tuple[float, str]]:
+    """Top-axis ticks of the predicted centres: centres closer than ``close`` (in the plotted unit)
+    share one tick at their mean, their labels joined (the rotated labels would overlap)."""
+    groups: list[list[tuple[float, str]]] = []
+    for c in sorted(centres, key=lambda c: c["omega_rad_s"]):
+        xc = c["omega_rad_s"] / w1
+        if groups and xc - groups[-1][-1][0] < close:
+            groups[-1].append((xc, c["label"]))
+        else:
+            groups.append([(xc, c["label"])])
+    return [(float(np.mean([xc for xc, _ in g])), " ~ ".join(label for _, label in g)) for g in groups]
+
+
 def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise: bool = True,
                          max_centre_labels: int = 12) -> Path:
     """Write the chart as PNG.  ``normalise``: Omega / omega_1 on the horizontal axis (as in
@@ -50,14 +63,16 @@ def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise:
         text = f"eps* = {t.depth_minimum:.5g}"
         if np.isfinite(t.depth_at_centre) and abs(t.depth_at_centre - t.depth_minimum) > 5e-6 * t.depth_minimum:
             text += f" (tip); {t.depth_at_centre:.5g} at 2 w{t.mode}"
-        ax.annotate(text, (xt, t.depth_minimum), textcoords="offset points",
-                    xytext=(-6 if right else 6, -12), ha="right" if right else "left", fontsize=8, color="tab:green")
+        low = y[-1] > y[0] and t.depth_minimum < y[0] + 0.15 * (y[-1] - y[0])     # no room below the line
+        ax.annotate(text, (xt, t.depth_minimum), textcoords="offset points", xytext=(-6 if right else 6, 4 if low else -4),
+                    ha="right" if right else "left", va="bottom" if low else "top", fontsize=8, color="tab:green")
         first = False
     # predicted centres (7.26) on a top axis: principal 2 w_r/s and combinations (w_r + w_q)/s
     centres = sorted(chart.centres, key=lambda c: (c["s"], c["omega_rad_s"]))[:max_centre_labels]
     top = ax.secondary_xaxis("top")
-    top.set_xticks([c["omega_rad_s"] / w1 for c in centres])
-    top.set_xticklabels([c["label"] for c in centres], rotation=90, fontsize=7)
+    ticks = _merged_centre_ticks(centres, w1, 0.02 * (x[-1] - x[0]))
+    top.set_xticks([xc for xc, _ in ticks])
+    top.set_xticklabels([label for _, label in ticks], rotation=90, fontsize=7)
     top.tick_params(length=3, pad=1)
     for c in centres:
         ax.axvline(c["omega_rad_s"] / w1, color="0.6", ls=":", lw=0.8)
@@ -67,9 +82,12 @@ def plot_stability_chart(chart, path: str | Path, *, title: str = "", normalise:
                   else "excitation frequency Omega [rad/s]")
     ax.set_ylabel("depth of pulsation eps [-]")
     ax.set_title(title or f"Parametric stability chart ({chart.damping})", fontsize=9, pad=42 if centres else 6)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
-    fig.tight_layout()
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:             # below the axis label, in a strip of its own (not tied to the axes' height)
+        fig.legend(handles, labels, fontsize=8, loc="lower center", ncol=2, frameon=False)
+        fig.tight_layout(rect=(0, 0.07, 1, 1))
+    else:
+        fig.tight_layout()
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)

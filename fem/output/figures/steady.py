@@ -115,6 +115,8 @@ def plot_phase_portraits(panels, path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from matplotlib.ticker import MaxNLocator
+
     n = len(panels)
     cols = 2 if n > 1 else 1
     rows = (n + cols - 1) // cols
@@ -128,6 +130,7 @@ def plot_phase_portraits(panels, path) -> None:
         ax.set_title(p["title"], fontsize=9)
         ax.set_xlabel(p.get("xlabel", "phi [rad]"))
         ax.set_ylabel("phi' [rad/s]")
+        ax.xaxis.set_major_locator(MaxNLocator(5))       # long tick labels (-0.015) must not touch
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, loc="upper right")
     for ax in axes.ravel()[n:]:
@@ -137,8 +140,9 @@ def plot_phase_portraits(panels, path) -> None:
     plt.close(fig)
 
 
-def plot_orbit_overlay(curves, path, title: str = "", xlabel: str = "t [s]") -> None:
-    """PNG of several time series on one axis: ``curves`` = [(t, y, label, style)]."""
+def plot_orbit_overlay(curves, path, title: str = "", xlabel: str = "t [s]", ylabel: str = "") -> None:
+    """PNG of several time series on one axis: ``curves`` = [(t, y, label, style)]; ``ylabel``: the
+    quantity and unit of ``y``."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -147,6 +151,7 @@ def plot_orbit_overlay(curves, path, title: str = "", xlabel: str = "t [s]") -> 
     for t, y, label, style in curves:
         ax.plot(t, y, style, lw=1.3, label=label)
     ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
