@@ -374,3 +374,12 @@ def test_lumped_file_without_bodies_is_bad_input_for_every_command(tmp_path, cap
     if command == "forced":
         m.write_text(m.read_text() + '\n[analysis]\ntype = "forced"\nomega_rad_s = [1.0]\n')
     _refused(capsys, [command, m], "body", "at least one [[body]] table")
+
+
+def test_run_up_of_a_rotor_its_bearings_do_not_hold_is_refused(tmp_path, capsys):
+    """Found by the slow fuzz tier: a bearing with kyy < 0 (negative stiffness is allowed since issue 29) left
+    the squeeze-film damper rotor statically unstable; the run-up's reduction then asked LAPACK for a
+    Cholesky factor of an indefinite K (exit 70).  Now bad input naming the stiffness; modal still runs."""
+    m = _edit(tmp_path, "rotor_squeeze_film_damper.toml", (r"^kyy = 5e7", "kyy = -5e7"))
+    _refused(capsys, ["simulate", m, "--json", tmp_path / "s.json"], "stiffness at rest", "positive definite")
+    assert _run(capsys, ["modal", m, "--json", tmp_path / "m.json"])[0] in (0, 3)

@@ -159,6 +159,27 @@ def _nonsingular(Kff, lu) -> bool:
     return bool(np.all(np.abs(lu.U.diagonal()) > 1e-12 * np.abs(Kff.diagonal()).max()))
 
 
+def _require_definite(Kff) -> None:
+    """A nonsingular free stiffness must also be positive definite for the basis by flexibility
+    (Sylvester's inertia of its LDL^T, :func:`discrete.linear.modal._negative_count`): a bearing or
+    seal with a negative direct stiffness can leave the rotor statically unstable, which the linear
+    analyses report (negative w^2, growing modes) but a run-up's reduction cannot start from."""
+    from discrete.linear.modal import _negative_count
+
+    negative = _negative_count(Kff, definite=True)
+    if negative is None and Kff.shape[0] <= 600:
+        try:
+            sla.cholesky(Kff.toarray())
+            negative = 0
+        except sla.LinAlgError:
+            negative = 1
+    if negative:
+        raise ModelError("[rotor]", "stiffness at rest (bearings, seals, supports)", f"{negative} negative "
+                         "direction(s)", "a rotor its bearings hold: the symmetric part of the stiffness positive "
+                         "definite for a transient run (a negative direct stiffness such as kyy < 0 leaves the "
+                         "rotor statically unstable; modal, campbell and stability accept it)")
+
+
 def _modes_by_flexibility(Kff, Mff, lu, k: int) -> tuple[np.ndarray, np.ndarray]:
     """The lowest k modes of K phi = w^2 M phi as the largest mu = 1/w^2 of M phi = mu K phi: K is
     positive definite, M may be singular (massless shaft nodes have no finite mode and are never
@@ -205,6 +226,7 @@ def reduce_rotor(rs: RotorSystem, contact_dofs, n_modes: int = 12, reference_spe
         lu, positive = None, False
     warnings = []
     if positive:
+        _require_definite(Kff)
         shapes_free, _ = _modes_by_flexibility(Kff, Mff, lu, int(n_modes))
         mode_shapes = np.zeros((rs.n_dofs, shapes_free.shape[1]))
         mode_shapes[free] = shapes_free
