@@ -25,9 +25,9 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import columns, contract, tables, write_csv, write_json
-from .commands import max_modes, count_option
-from ..output.jsonio import encode
+from ..output import columns, contract, tables, write_csv
+from .commands import _emit, count_option, max_modes
+from .commands import _outputs as _check_outputs
 
 RPM = 30.0 / np.pi
 
@@ -64,20 +64,6 @@ def is_rotor_file(path) -> bool:
         return "rotor" in read_toml(path)
     except ModelError:
         return False            # the other command reports the unreadable file
-
-
-def _check_outputs(args, command: str, **kinds) -> dict:
-    """Everything checked before any work starts (:func:`fem.app.options.prepare`)."""
-    from .options import prepare
-
-    return prepare(args, command, **kinds)
-
-
-def _emit(args, command: str, study, data: dict) -> dict:
-    doc = encode(contract.payload(command, study, data))
-    if getattr(args, "json", None):
-        write_json(args.json, doc, encoded=True)
-    return doc
 
 
 def _load(path):

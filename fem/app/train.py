@@ -20,9 +20,9 @@ import numpy as np
 
 from discrete.errors import ModelError
 
-from ..output import contract, write_csv, write_json
-from ..output.jsonio import encode
-from .commands import count_option, max_modes
+from ..output import contract, write_csv
+from .commands import _emit, count_option, max_modes
+from .commands import _outputs as _check_outputs
 
 RPM = 30.0 / np.pi
 
@@ -53,21 +53,6 @@ def is_train_file(path) -> bool:
     except ModelError:
         return False            # the other command reports the unreadable file
     return any(k in doc for k in TRAIN_MARKERS)
-
-
-def _check_outputs(args, command: str, **kinds) -> None:
-    """The one convention's checks before any work (:func:`fem.app.options.prepare`): old spellings,
-    ``--quiet``, every output path (``attr=kind``), two outputs on one path, plotly for ``--html``."""
-    from .options import prepare
-
-    prepare(args, command, **kinds)
-
-
-def _emit(args, command: str, study, data: dict) -> dict:
-    doc = encode(contract.payload(command, study, data))
-    if getattr(args, "json", None):
-        write_json(args.json, doc, encoded=True)
-    return doc
 
 
 def _load(path):
