@@ -11,6 +11,28 @@ from ...errors import ModelError
 from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
+def flank_guards(mode: int, s, upper: float, lower: float, e0) -> list:
+    """Event functions of a contact between two flanks (``upper``/``lower`` scaled by ``e0``; an
+    infinite flank is never reached): in contact (mode +1 / -1) the separation, else closing on
+    either finite flank."""
+    if mode == 1:
+        return [(s - upper * e0, "leave")]
+    if mode == -1:
+        return [(lower * e0 - s, "leave")]
+    out = []
+    if math.isfinite(upper):
+        out.append((upper * e0 - s, "close+"))
+    if math.isfinite(lower):
+        out.append((s - lower * e0, "close-"))
+    return out
+
+
+def flank_event(tag: str, ctx) -> None:
+    """The mode after a flank event of :func:`flank_guards`, recorded as contact_open / contact_close."""
+    ctx.mode = {"leave": 0, "close+": 1, "close-": -1}[tag]
+    ctx.record("contact_open" if tag == "leave" else "contact_close")
+
+
 @dataclass
 class Contact(Element):
     """Clearance lower <= s <= upper (a lone bound: a stop, the other at infinity); beyond it a
@@ -70,20 +92,10 @@ class Contact(Element):
         return -self.k * (s - self._bound(mode) * e0) - self.c * sd
 
     def guards(self, mode, s, sd, F, e0, t):
-        if mode == 1:
-            return [(s - self.upper * e0, "leave")]
-        if mode == -1:
-            return [(self.lower * e0 - s, "leave")]
-        out = []
-        if math.isfinite(self.upper):
-            out.append((self.upper * e0 - s, "close+"))
-        if math.isfinite(self.lower):
-            out.append((s - self.lower * e0, "close-"))
-        return out
+        return flank_guards(mode, s, self.upper, self.lower, e0)
 
     def on_event(self, tag, ctx):
-        ctx.mode = {"leave": 0, "close+": 1, "close-": -1}[tag]
-        ctx.record("contact_open" if tag == "leave" else "contact_close")
+        flank_event(tag, ctx)
 
     def potential(self, s, mode):
         if mode == 0:

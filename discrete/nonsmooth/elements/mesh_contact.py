@@ -9,7 +9,7 @@ import numpy as np
 
 from ...errors import ModelError
 from .base import Element
-from .contact import KelvinVoigtStep
+from .contact import KelvinVoigtStep, flank_event, flank_guards
 from .gap import ClearanceSpringStep
 
 
@@ -125,22 +125,10 @@ class MeshContact(Element):
         return F - self.c * sd if self.c else F
 
     def guards(self, mode, s, sd, F, e0, t):
-        if self.engaged:
-            return []
-        if mode == 1:
-            return [(s - self.upper * e0, "leave")]
-        if mode == -1:
-            return [(self.lower * e0 - s, "leave")]
-        out = []
-        if math.isfinite(self.upper):
-            out.append((self.upper * e0 - s, "close+"))
-        if math.isfinite(self.lower):
-            out.append((s - self.lower * e0, "close-"))
-        return out
+        return [] if self.engaged else flank_guards(mode, s, self.upper, self.lower, e0)
 
     def on_event(self, tag, ctx):
-        ctx.mode = {"leave": 0, "close+": 1, "close-": -1}[tag]
-        ctx.record("contact_open" if tag == "leave" else "contact_close")
+        flank_event(tag, ctx)
 
     def potential(self, s, mode):
         return self.potential_at(s, mode, 0.0)
