@@ -274,17 +274,23 @@ def parametric_data(study, spec, chart) -> dict:
 
 
 # ------------------------------------------------------------------ rotor files
-def _rotor_modal(study, res) -> dict:
-    """Complex modes at a speed (:class:`fem.rotor.RotorModes`) in the modal contract's shape."""
+def _complex_modes(res) -> tuple[dict, int]:
+    """The modal contract's frequencies of complex modes (rotor, train): those neither reliable nor rigid
+    null (their values kept as ``omega_rad_s_unverified``), the eigenvalues complex; (dict, n_modes)."""
     d = res.to_dict()
     ok = res.reliable | res.rigid
-    n = res.n_modes
     d["omega_rad_s_unverified"] = d["omega_rad_s"]
     d["omega_rad_s"] = [v if r else None for v, r in zip(d["omega_rad_s"], ok)]
     d["frequencies_hz"] = [v if r else None for v, r in zip(d["frequencies_hz"], ok)]
     d["eigenvalues"] = res.eigenvalues
     d.pop("eigenvalues_real", None)
     d.pop("eigenvalues_imag", None)
+    return d, res.n_modes
+
+
+def _rotor_modal(study, res) -> dict:
+    """Complex modes at a speed (:class:`fem.rotor.RotorModes`) in the modal contract's shape."""
+    d, n = _complex_modes(res)
     d["kind_of_mode"] = d.pop("kind")
     d["rayleigh_rel_diff"] = [None] * n
     d["precision_bound"] = [None] * n
@@ -342,15 +348,7 @@ def _train_forced(res) -> dict:
 
 def _train_modal(study, res) -> dict:
     """Complex modes of a train at a reference speed (:class:`fem.train.TrainModes`)."""
-    d = res.to_dict()
-    ok = res.reliable | res.rigid
-    n = res.n_modes
-    d["omega_rad_s_unverified"] = d["omega_rad_s"]
-    d["omega_rad_s"] = [v if r else None for v, r in zip(d["omega_rad_s"], ok)]
-    d["frequencies_hz"] = [v if r else None for v, r in zip(d["frequencies_hz"], ok)]
-    d["eigenvalues"] = res.eigenvalues
-    d.pop("eigenvalues_real", None)
-    d.pop("eigenvalues_imag", None)
+    d, n = _complex_modes(res)
     d["rayleigh_rel_diff"] = [None] * n
     d["precision_bound"] = [None] * n
     ts = study.train
