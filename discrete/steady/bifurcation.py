@@ -104,9 +104,15 @@ def psi_pd(mu) -> float:
     return float(np.real(np.prod(np.asarray(mu, complex) + 1.0)))
 
 
+_TRIU: dict = {}
+
+
 def _pairs(mu):
     mu = np.asarray(mu, complex)
-    i, j = np.triu_indices(mu.size, 1)
+    ij = _TRIU.get(mu.size)
+    if ij is None:
+        ij = _TRIU[mu.size] = np.triu_indices(mu.size, 1)
+    i, j = ij
     return mu[i] * mu[j] - 1.0, i, j
 
 
@@ -147,13 +153,17 @@ def detect(mus, bp_signs, fold_index) -> list:
     out = []
     folds = set(fold_index)
     n = len(mus)
+    # the test functions once per point (signs; None where the multipliers were not computed)
+    spd = [None if mu is None else np.sign(psi_pd(mu)) for mu in mus]
+    sns = [None if mu is None else np.sign(psi_ns(mu)) for mu in mus]
+    spl = [None if mu is None else np.sign(psi_plus(mu)) for mu in mus]
     for i in range(n - 1):
         a, b = mus[i], mus[i + 1]
         if a is None or b is None:
             continue
-        if np.sign(psi_pd(a)) * np.sign(psi_pd(b)) < 0:
+        if spd[i] * spd[i + 1] < 0:
             out.append((i, "period_doubling", "psi_PD = prod(mu + 1)"))
-        if np.sign(psi_ns(a)) * np.sign(psi_ns(b)) < 0 and (ns_pair_complex(a) or ns_pair_complex(b)):
+        if sns[i] * sns[i + 1] < 0 and (ns_pair_complex(a) or ns_pair_complex(b)):
             out.append((i, "neimark_sacker", "psi_NS = prod(mu_i mu_j - 1)"))
     bp = set()
     if bp_signs is not None:
@@ -167,7 +177,7 @@ def detect(mus, bp_signs, fold_index) -> list:
         a, b = mus[i], mus[i + 1]
         if a is None or b is None or i in folds or i in bp:
             continue
-        if np.sign(psi_plus(a)) * np.sign(psi_plus(b)) < 0 and not ({i - 1, i + 1} & (folds | bp)):
+        if spl[i] * spl[i + 1] < 0 and not ({i - 1, i + 1} & (folds | bp)):
             out.append((i, "branch_point", "psi_+ = prod(mu - 1)"))
     return sorted(out)
 

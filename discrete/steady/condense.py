@@ -182,9 +182,16 @@ class CondensedHB:
         return self._store(key, S, dS, ft, dft, X if self.l.size else None, wf if self.l.size else None)
 
     def _store(self, key, S, dS, ft, dft, X, wf):
-        if not (np.all(np.isfinite(S)) and np.all(np.isfinite(ft))):
+        if self.compiled:
+            from .condense_kernel import real_jacobian
+
+            J, finite = real_jacobian(S)
+            finite = finite and bool(np.all(np.isfinite(ft)))
+        else:
+            J, finite = self._real_jacobian(S), bool(np.all(np.isfinite(S)) and np.all(np.isfinite(ft)))
+        if not finite:
             raise SolverError(f"condensed HB: the condensed operator is not finite at omega = {key!r}")
-        op = {"S": S, "dS": dS, "f": ft, "df": dft, "X": X, "wf": wf, "J": self._real_jacobian(S)}
+        op = {"S": S, "dS": dS, "f": ft, "df": dft, "X": X, "wf": wf, "J": J}
         if len(self._cache) >= self._cache_size:
             del self._cache[next(iter(self._cache))]
         self._cache[key] = op
@@ -253,11 +260,19 @@ class CondensedHB:
         op = self.operator(omega)
         nc = self.c.size
         Q = np.asarray(X, float).reshape(nc, self.m)
-        Zc = self._complex(Q)
         R_nl, J_nl, Rw_nl = self.inner.evaluate_residual(X, omega, jac=jac, dw=dw)
-        R = R_nl + self._real(np.einsum("kij,kj->ki", op["S"], Zc) - op["f"]).ravel()
         J = None if not jac else J_nl + op["J"]
         Rw = None
+        if self.compiled:
+            from .condense_kernel import linear_residual
+
+            Q = np.ascontiguousarray(Q)
+            R = R_nl + linear_residual(op["S"], op["f"], Q)
+            if dw:
+                Rw = Rw_nl + linear_residual(op["dS"], op["df"], Q)
+            return R, J, Rw
+        Zc = self._complex(Q)
+        R = R_nl + self._real(np.einsum("kij,kj->ki", op["S"], Zc) - op["f"]).ravel()
         if dw:
             Rw = Rw_nl + self._real(np.einsum("kij,kj->ki", op["dS"], Zc) - op["df"]).ravel()
         return R, J, Rw
@@ -283,6 +298,10 @@ class CondensedHB:
         op = self.operator(omega)
         nc = self.c.size
         Qc = np.asarray(X, float).reshape(nc, self.m)
+        if self.compiled and self.l.size:
+            from .condense_kernel import expand
+
+            return expand(np.ascontiguousarray(Qc), self.c, self.l, op["X"], op["wf"]).ravel()
         Q = np.empty((self.s.n, self.m))
         Q[self.c] = Qc
         if self.l.size:

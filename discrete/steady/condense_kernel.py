@@ -193,3 +193,75 @@ def operator(M, C, K, c, l, F, omega, nu, symmetric):
         Xo[k] = X
         wo[k] = w
     return S, dS, ft, dft, Xo, wo, True
+
+
+@njit(cache=True)
+def real_jacobian(S):
+    """The real (nc m)^2 Jacobian of Re/-Im (S_k z_k) in the coefficients [a0, a1, b1, ...] per DOF
+    (CondensedHB._real_jacobian): blocks [[Sr, Si], [-Si, Sr]] of harmonic k >= 1, Sr of k = 0; and
+    whether S is finite."""
+    H1, nc, _ = S.shape
+    m = 2 * H1 - 1
+    J = np.zeros((nc * m, nc * m))
+    finite = True
+    for i in range(nc):
+        for j in range(nc):
+            z = S[0, i, j]
+            if not (np.isfinite(z.real) and np.isfinite(z.imag)):
+                finite = False
+            J[i * m, j * m] = z.real
+            for k in range(1, H1):
+                z = S[k, i, j]
+                if not (np.isfinite(z.real) and np.isfinite(z.imag)):
+                    finite = False
+                a, b = i * m + 2 * k - 1, j * m + 2 * k - 1
+                J[a, b] = z.real
+                J[a, b + 1] = z.imag
+                J[a + 1, b] = -z.imag
+                J[a + 1, b + 1] = z.real
+    return J, finite
+
+
+@njit(cache=True)
+def linear_residual(S, f, Q):
+    """The real layout (nc m,) of ``S_k z_k - f_k`` (z_k = a_k - i b_k the complex coefficients of Q (nc, m))
+    -- the condensed linear part of the residual, or of its omega derivative with dS, df."""
+    H1, nc, _ = S.shape
+    m = 2 * H1 - 1
+    out = np.empty(nc * m)
+    for i in range(nc):
+        for k in range(H1):
+            acc = -f[k, i]
+            for j in range(nc):
+                z = Q[j, 0] + 0j if k == 0 else Q[j, 2 * k - 1] - 1j * Q[j, 2 * k]
+                acc += S[k, i, j] * z
+            if k == 0:
+                out[i * m] = acc.real
+            else:
+                out[i * m + 2 * k - 1] = acc.real
+                out[i * m + 2 * k] = -acc.imag
+    return out
+
+
+@njit(cache=True)
+def expand(Qc, c, l, X, wf):
+    """Full coefficients (n, m) of the condensed ones Qc (nc, m): z_l = wf - X z_c per harmonic."""
+    nc, m = Qc.shape
+    H1 = (m + 1) // 2
+    n = nc + l.size
+    Q = np.empty((n, m))
+    for i in range(nc):
+        for q in range(m):
+            Q[c[i], q] = Qc[i, q]
+    for r in range(l.size):
+        for k in range(H1):
+            acc = wf[k, r]
+            for j in range(nc):
+                z = Qc[j, 0] + 0j if k == 0 else Qc[j, 2 * k - 1] - 1j * Qc[j, 2 * k]
+                acc -= X[k, r, j] * z
+            if k == 0:
+                Q[l[r], 0] = acc.real
+            else:
+                Q[l[r], 2 * k - 1] = acc.real
+                Q[l[r], 2 * k] = -acc.imag
+    return Q

@@ -36,7 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import lu_factor, lu_solve
+from scipy.linalg import lapack, lu_factor
 
 from ..errors import SolverError
 
@@ -67,6 +67,9 @@ class Branch:
 
 class _StepFailure(Exception):
     """A rejected continuation step (the message says why)."""
+
+
+_gesv, _getrs = lapack.get_lapack_funcs(("gesv", "getrs"), (np.zeros(1),))
 
 
 def newton_fixed(fun, x0, w, tol=1e-9, maxit=30, xscale=None):
@@ -145,22 +148,29 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         A[n] = prev
         return tangent_from(A, prev)
 
+    ar = np.arange(n + 1)
+    Ab = np.empty((n + 1, n + 1))          # the corrector's bordered matrix and right-hand side (reused)
+    rb = np.empty(n + 1)
+
     def corrector(up, tau):
-        """Newton on R = 0 and tau . (u - up) = 0; returns (u, iterations, the last bordered matrix): its
-        last row is tau, so the tangent at the new point is its solution for e_n (the Jacobian one
-        iteration before convergence, where the step was already below the tolerance)."""
+        """Newton on R = 0 and tau . (u - up) = 0, one LAPACK call (gesv) per step; returns (u, iterations,
+        the LU, (0-based) pivots and the last bordered matrix): its last row is tau, so the tangent at the new point is its
+        solution for e_n (the Jacobian one iteration before convergence, where the step was already below
+        the tolerance)."""
         uu = up.copy()
         ww = uu[n] * wscale
         last = np.inf
         for it in range(1, maxit + 1):
             xx, ww = uu[:n] * xs, uu[n] * wscale
             R, Jx, Jw = fun(xx, ww)
-            A = np.zeros((n + 1, n + 1))
-            A[:n, :n] = Jx * xs[None, :]
-            A[:n, n] = Jw * wscale
-            A[n] = tau
-            rhs = -np.concatenate([R, [tau @ (uu - up)]])
-            du = np.linalg.solve(A, rhs)
+            np.multiply(Jx, xs, out=Ab[:n, :n])
+            np.multiply(Jw, wscale, out=Ab[:n, n])
+            Ab[n] = tau
+            np.negative(R, out=rb[:n])
+            rb[n] = -(tau @ (uu - up))
+            lu, piv, du, info = _gesv(Ab, rb)
+            if info != 0:
+                raise np.linalg.LinAlgError("singular bordered Jacobian")
             uu = uu + du
             if not np.all(np.isfinite(uu)):
                 raise _StepFailure(f"the corrector diverged near omega = {ww:.6g}")
@@ -169,23 +179,27 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             # converged: this step below the tolerance, or (early_stop) quadratic convergence predicting the
             # next one far below it (|du_k| <= 0.1 |du_k-1| and |du_k|^2 / |du_k-1| <= tol / 10)
             if big <= lim or (early_stop and it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
-                return uu, it, A
+                return uu, it, (lu, piv, Ab)
             last = big
         raise _StepFailure(f"the corrector did not converge in {maxit} iterations near omega = {ww:.6g}")
 
     def tangent_from(A, prev):
-        """The tangent from a bordered matrix [Jx Jw; prev] (the corrector's or a fresh one), oriented
-        along prev; the sign of det A (= sign det [Jx Jw; t], t . prev > 0) is kept in ``sign[0]``: it
-        changes at a branch point, not at a fold."""
+        """The tangent from a bordered matrix [Jx Jw; prev] (the corrector's or a fresh one; or its LU and
+        0-based pivots), oriented along prev; the sign of det A (= sign det [Jx Jw; t], t . prev > 0) is
+        kept in ``sign[0]``: it changes at a branch point, not at a fold."""
         rhs = np.zeros(n + 1)
         rhs[n] = 1.0
-        try:
+        if isinstance(A, tuple):
+            lu, piv, A = A
+        else:
             lu, piv = lu_factor(A, check_finite=False)
-            t = lu_solve((lu, piv), rhs, check_finite=False)
+        try:
+            t, info = _getrs(lu, piv, rhs)
             d = np.diag(lu)
-            sign[0] = float(np.prod(np.sign(d)) * (-1.0) ** int(np.sum(piv != np.arange(n + 1))))
-            if not np.all(np.isfinite(t)) or np.any(d == 0):
+            if info != 0 or not np.all(np.isfinite(t)) or np.any(d == 0):
                 raise np.linalg.LinAlgError("singular")
+            # sign of det A: the signs of U's diagonal and the parity of the row interchanges
+            sign[0] = -1.0 if (np.count_nonzero(d < 0) + np.count_nonzero(piv != ar)) % 2 else 1.0
         except (np.linalg.LinAlgError, ValueError):
             t = np.linalg.lstsq(A, rhs, rcond=None)[0]
             sign[0] = 0.0
@@ -224,7 +238,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             turned = None          # the largest step rejected only for its tangent turn: (xn, wn, tn, it, landed, h)
             while h >= ds_min:
                 try:
-                    uu, it, Ab = corrector(u + h * tau, tau)
+                    uu, it, fac = corrector(u + h * tau, tau)
                     xn, wn = uu[:n] * xs, uu[n] * wscale
                     landed = crossed(wn)
                     if landed is not None:     # at or beyond a bound: land on it at the fixed frequency
@@ -233,7 +247,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
                         it = max(it, it_land)
                         tn = tangent(xn, wn, tau)
                     elif reuse_jacobian:
-                        tn = tangent_from(Ab, tau)
+                        tn = tangent_from(fac, tau)
                     else:
                         tn = tangent(xn, wn, tau)
                     if tn @ tau <= 0.8:

@@ -16,6 +16,8 @@ along the HB orbit, integrated over one period by classical RK4 (``floquet_hb``)
 """
 from __future__ import annotations
 
+import os
+
 import numpy as np
 from scipy.sparse import csr_matrix
 
@@ -36,7 +38,8 @@ class HBModel:
     Everything that depends on the model only (bases, exogenous terms by powers of omega, index maps)
     is built once."""
 
-    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None, kinks: str = "exact"):
+    def __init__(self, system, harmonics: int = 5, nu: int = 1, samples: int | None = None, kinks: str = "exact",
+                 compiled: bool | None = None):
         self.s = system
         self.H = int(harmonics)
         self.nu = int(nu)
@@ -101,6 +104,11 @@ class HBModel:
         self._bases = {}
         self._lin = (None, None, None, None)
         self._setup_piecewise(laws)
+        # hook (hb_kernel.py): the whole evaluation in one compiled call (compiled_evaluation: for models whose
+        # numpy evaluation is expensive; compiled = True: whenever possible, False: never); decided at the
+        # first evaluation (numba is imported then)
+        self._compile_mode = compiled
+        self._compiled = None if compiled is not False and COMPILED else False
 
     def _setup_piecewise(self, laws):
         """The elements whose laws are integrated exactly (:mod:`.piecewise`): those with a piecewise-affine
@@ -111,7 +119,7 @@ class HBModel:
         self._rough = [e for e, (el, law) in enumerate(zip(self.s.elements, laws))
                        if law is None and el.smoothness < 2] if self.N_fine > self.N else []
         self.fine_evaluations = 0
-        self._go_fine = {}
+        self._go_fine = np.zeros(len(self.s.elements), bool)
         pw = []
         for e, law in enumerate(laws):
             if law is None:
@@ -161,6 +169,66 @@ class HBModel:
         A = self.s.Gf @ np.asarray(X, float).reshape(self.s.n, self.m)
         S, Sd, _ = self._element_coordinates(A, omega)
         return all(self.s.elements[e].sampled_exactly(S[e], Sd[e], self.s.eps) for e in self._rough)
+
+    def rough_exact_batch(self, e: int, S, Sd) -> np.ndarray:
+        """Element.sampled_exactly of element e on many orbits' samples S, Sd (P, N) (compiled when the
+        model's evaluation is)."""
+        ck = self._kernel()
+        if ck:
+            from .hb_kernel import exact_on_samples_batch
+
+            return exact_on_samples_batch(int(ck.codes[e]), ck.par[e], np.ascontiguousarray(Sd, float))
+        el = self.s.elements[e]
+        return np.array([el.sampled_exactly(a, b, self.s.eps) for a, b in zip(S, Sd)], bool)
+
+    def _kernel(self):
+        """The compiled evaluation (hb_kernel.CompiledHB) or False; built at the first use."""
+        if self._compiled is None:
+            self._compiled = compiled_evaluation(self, force=self._compile_mode is True)
+        return self._compiled
+
+    def pw_projections(self, k: int, Cs, Cv, S, J: int):
+        """The k-th exactly integrated law (``_pw[k]``) along P orbits: its projections on harmonics 0..J
+        (P, 2J+1) and the period means of dF/ds, dF/ds' (P,) from the series Cs, Cv (P, 2H+1) of s, s' and
+        the samples S (P, N) of s (compiled when the model's evaluation is)."""
+        i, proj = self._pw[k][0], self._pw[k][1]
+        ck = self._kernel()
+        if ck:
+            from .hb_kernel import pw_projections
+
+            nb = ck.nbrk[i]
+            return pw_projections(np.ascontiguousarray(Cs, float), np.ascontiguousarray(Cv, float),
+                                  np.ascontiguousarray(S, float), ck.brk[i, :nb], ck.pab[i, 0, :nb + 1],
+                                  ck.pab[i, 1, :nb + 1], ck.pab[i, 2, :nb + 1], bool(ck.pflags[i, 0]), self.H, int(J))
+        P = Cs.shape[0]
+        F = np.zeros((P, 2 * J + 1))
+        ms, mv = np.zeros(P), np.zeros(P)
+        for i in range(P):
+            r = proj.evaluate(Cs[i], Cv[i], S[i], J=J, jac=True)
+            F[i] = r["F"]
+            ms[i], mv[i] = r["spec_s"][0].real, r["spec_v"][0].real
+        return F, ms, mv
+
+    def crossing_phases(self, Xs):
+        """Per orbit (Xs: (P, n, 2H+1)), the crossing phases of its exactly integrated laws (sorted per law)."""
+        A = self.s.Gf @ Xs                                       # (P, nel, m)
+        P = Xs.shape[0]
+        ck = self._kernel()
+        per = []
+        for e, proj, sa, _, _ in self._pw:
+            if ck:
+                from .hb_kernel import crossing_phases
+
+                nb = ck.nbrk[e]
+                off = np.zeros(P + 1, np.int64)
+                flat = crossing_phases(np.ascontiguousarray(A[:, e]), np.ascontiguousarray(sa), ck.brk[e, :nb],
+                                       self.G, off)
+                per.append([flat[off[p]:off[p + 1]] for p in range(P)])
+            else:
+                from .piecewise import crossings
+
+                per.append([crossings(A[p, e] + sa, (A[p, e] + sa) @ self.G, proj.law.breaks)[0] for p in range(P)])
+        return [np.concatenate([c[p] for c in per]) if per else np.zeros(0) for p in range(P)]
 
     @property
     def exact_elements(self) -> list:
@@ -217,6 +285,9 @@ class HBModel:
 
     def evaluate_residual(self, X, omega, jac=True, dw=False):
         """(R, J or None, dR/domega or None) at coefficients X and frequency omega (class docstring)."""
+        ck = self._kernel()
+        if ck:
+            return ck(X, omega, jac, dw)
         s = self.s
         n, m, nu = s.n, self.m, self.nu
         Q = X.reshape(n, m)
@@ -313,7 +384,7 @@ class HBModel:
             spec_v = np.zeros((nel, m), complex)
         # a rough law found not exact on the HB grid at the last evaluation goes to the dense grid directly
         # (and back to the HB grid once its dense samples show it exact)
-        fine_now = [e for e in self._rough if self._go_fine.get(e)]
+        fine_now = [e for e in self._rough if self._go_fine[e]]
         smp = [e for e in self._sampled if e not in fine_now] if fine_now else self._sampled
         for e in fine_now:
             exact = self._fine_element(e, A[e], omega, Jh, jac, dw, Fp, Fw, spec_s, spec_v)
@@ -494,6 +565,39 @@ class HBModel:
         return th / Om, Q @ G, Om * (Q @ DG)
 
 
+#: DRIVEFEM_JIT=0: every HB evaluation by numpy (the reference path of the compiled kernel); =always: the
+#: compiled kernel for every model it can evaluate (a long-lived process: numba's load is paid once)
+COMPILED = os.environ.get("DRIVEFEM_JIT", "1") != "0"
+COMPILED_ALWAYS = os.environ.get("DRIVEFEM_JIT", "") == "always"
+
+
+#: the compiled kernel for models with at least this many HB unknowns n (2H+1) (see compiled_evaluation)
+COMPILED_MIN_UNKNOWNS = 120
+
+
+def compiled_evaluation(model: HBModel, force: bool = False):
+    """The compiled evaluation of ``model`` (:class:`.hb_kernel.CompiledHB`), or False (numpy then).
+
+    Which models (decided per model, never by the state of the process, so that a curve's numbers do not
+    depend on what ran before it): those whose numpy evaluation is expensive -- an exactly integrated
+    piecewise law (its crossings and Toeplitz products: ~200 us to 2 ms per evaluation in numpy, 15-50 us
+    compiled), a rough law evaluated on the dense grid (friction: ~1.2 ms / 0.6 ms), or n (2H+1) >=
+    ``COMPILED_MIN_UNKNOWNS`` (the dense Jacobian's assembly) -- and only when numba is installed, every
+    law is compiled or exactly integrated, and DRIVEFEM_JIT is not 0.  Loading numba and the cached kernel
+    costs ~0.25 s of CPU once per process (measured: import 0.09 s, the first call 0.17 s), which a small
+    smooth model (a one-DOF Duffing oscillator: ~45 us per numpy evaluation) would not recover in a
+    curve of ~500 evaluations: its fresh ``drivefem forced`` stays at ~0.6 s.  ``force``: whenever possible."""
+    if not (force or COMPILED_ALWAYS or model._pw or model._rough or model.nq >= COMPILED_MIN_UNKNOWNS):
+        return False
+    try:
+        from .hb_kernel import JIT, CompiledHB
+    except ImportError:
+        return False
+    if not JIT:
+        return False
+    return CompiledHB.build(model) or False
+
+
 def default_samples(H: int, smoothness: int) -> int:
     """Default AFT samples per period for H harmonics and the roughest sampled law (0: discontinuous,
     1: kinked, 2: smooth)."""
@@ -588,7 +692,9 @@ def floquet_hb_batch(model: HBModel, Xs, omegas, steps: int | None = None, chunk
         # piecewise-constant coefficients (every exactly integrated law between its crossings, and every
         # sampled law whose dF/ds, dF/ds' samples are constant: a saturated clutch): the exponentials of
         # the crossing-cut intervals are exact, however few -- eight uniform intervals then suffice
-        const = np.array([model.constant_coefficients(X, w) for X, w in zip(Xs, omegas)])
+        ck = model._kernel()
+        const = ck.constant_coefficients(Xs, omegas) if ck else \
+            np.array([model.constant_coefficients(X, w) for X, w in zip(Xs, omegas)])
         if np.any(const):
             out = np.empty((Xs.shape[0], 2 * n), complex)
             out[const] = _floquet_steps(model, Xs[const], omegas[const], 8, chunk_entries)
@@ -647,16 +753,8 @@ def _floquet_uniform(model, Xs, omegas, M, chunk_entries):
 
 
 def _crossing_phases(model, Xs):
-    """Per orbit, the crossing phases of its exactly integrated laws."""
-    from .piecewise import crossings
-
-    A = model.s.Gf @ Xs                                       # (P, nel, m)
-    out = []
-    for p in range(Xs.shape[0]):
-        th = [crossings(A[p, e] + sa, (A[p, e] + sa) @ model.G, proj.law.breaks)[0]
-              for e, proj, sa, _, _ in model._pw]
-        out.append(np.concatenate(th) if th else np.zeros(0))
-    return out
+    """Per orbit, the crossing phases of its exactly integrated laws (:meth:`HBModel.crossing_phases`)."""
+    return model.crossing_phases(Xs)
 
 
 def _floquet_core(model, Xs, omegas, M, chunk_entries, split, cuts=None):
@@ -750,6 +848,8 @@ def _split_coordinates(model: HBModel, Q, w, M: int, cuts=None):
     nel = A.shape[1]
     G, DG, grid = model._bases[("mid", M)]
     cuts = _crossing_phases(model, Q) if cuts is None else cuts
+    if model._kernel():
+        return _split_compiled(model, Q, A, w, M, cuts)
     extra = max((c.size for c in cuts), default=0)
     Mp = M + extra
     Om = w / model.nu
@@ -786,6 +886,40 @@ def _split_coordinates(model: HBModel, Q, w, M: int, cuts=None):
             Sd[p, :, n_:] = Sd[p, :, n_ - 1:n_]
     hh *= (model.nu / w)[:, None]
     return S, Sd, hh
+
+
+def _split_compiled(model: HBModel, Q, A, w, M: int, cuts):
+    """:func:`_split_coordinates` with the intervals laid out by the compiled hb_kernel.split_layout and
+    the sub-intervals of all orbits evaluated at once."""
+    from .hb_kernel import split_layout
+    from .piecewise import basis_at
+
+    s = model.s
+    P, nel = A.shape[0], A.shape[1]
+    G, DG, grid = model._bases[("mid", M)]
+    off = np.zeros(P + 1, np.int64)
+    off[1:] = np.cumsum([c.size for c in cuts])
+    flat = np.concatenate(cuts) if P else np.zeros(0)
+    uni, idx, dur, mids, orbit = split_layout(np.ascontiguousarray(flat, float), off, M)
+    Om = w / model.nu
+    S0 = A @ G + grid.sa + grid.sb / w[:, None, None]                        # (P, nel, M)
+    Sd0 = Om[:, None, None] * (A @ DG) + grid.sda + w[:, None, None] * grid.sdb
+    Mp = uni.shape[1]
+    S = np.empty((P, Mp, nel))
+    Sd = np.empty((P, Mp, nel))
+    pp = np.broadcast_to(np.arange(P)[:, None], uni.shape)
+    S[uni] = S0.transpose(0, 2, 1)[pp[uni], idx[uni]]
+    Sd[uni] = Sd0.transpose(0, 2, 1)[pp[uni], idx[uni]]
+    if mids.size:
+        Bm = basis_at(model.H, mids)                                         # (K, m)
+        g = s.grid_parts(mids, model.nu)
+        Ak = A[orbit]                                                        # (K, nel, m)
+        Ss = np.einsum("kem,km->ke", Ak, Bm) + g.sa.T + g.sb.T / w[orbit, None]
+        Sds = Om[orbit, None] * np.einsum("kem,km->ke", Ak, Bm @ model.D.T) + g.sda.T + w[orbit, None] * g.sdb.T
+        S[~uni] = Ss[idx[~uni]]
+        Sd[~uni] = Sds[idx[~uni]]
+    hh = dur * (model.nu / w)[:, None]
+    return S.transpose(0, 2, 1), Sd.transpose(0, 2, 1), hh
 
 
 def _unique_rows(keys):

@@ -254,7 +254,7 @@ def measure_orbits(sm, hb: HBModel, Xs, omegas) -> np.ndarray:
         if meas == "h1":
             val = measures.series_h1(C, hb.nu)
         else:
-            val = measures.from_extremes(meas, *measures.series_extremes(C))
+            val = measures.from_extremes(meas, *measures.series_extremes(C, compiled=bool(hb._kernel())))
         return val / cfg.scale
     e = sm.resp_el
     el = s.elements[e]
@@ -276,7 +276,7 @@ def measure_orbits(sm, hb: HBModel, Xs, omegas) -> np.ndarray:
     if meas != "h1" and law is not None and not np.any(np.asarray(law.c)) and not np.any(sb):
         # a law of s alone, affine between its breaks: the extremes of |F| over the orbit are among
         # |F| at the extremes of s and at the breaks (and zeros of F) inside that range
-        smax, smin = measures.series_extremes(Cs)
+        smax, smin = measures.series_extremes(Cs, compiled=bool(hb._kernel()))
         return measures.from_extremes(meas, *_piecewise_abs_extremes(law, smin, smax)) / cfg.scale
     P = max(512, hb.N)
     if meas == "h1":

@@ -40,11 +40,17 @@ def series_values(C, theta, deriv: int = 0):
     return v[:, 0] if squeeze else v
 
 
-def series_extremes(C, points: int | None = None, iterations: int = 6):
-    """(max, min) of each real series C (k, 2H+1): grid extremes refined by Newton on y' = 0."""
+def series_extremes(C, points: int | None = None, iterations: int = 6, compiled: bool = False):
+    """(max, min) of each real series C (k, 2H+1): grid extremes refined by Newton on y' = 0
+    (``compiled``: by hb_kernel.series_extremes, the same steps -- the HB curve asks for it when its model
+    is evaluated by the kernel)."""
     C = np.atleast_2d(np.asarray(C, float))
     H = (C.shape[-1] - 1) // 2
     P = points or max(64, 16 * H)
+    if compiled:
+        from .hb_kernel import series_extremes as kernel
+
+        return kernel(np.ascontiguousarray(C), int(P), int(iterations))
     th = 2 * np.pi * np.arange(P) / P
     kt = np.multiply.outer(th, np.arange(1, H + 1))
     Y = C[:, :1] + C[:, 1::2] @ np.cos(kt).T + C[:, 2::2] @ np.sin(kt).T      # (k, P)

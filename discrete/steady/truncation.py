@@ -92,14 +92,12 @@ def _high_harmonics(hb, Q, omegas, J):
         out[:, e, 0::2], out[:, e, 1::2] = spec.real, -spec.imag
         ms[:, e], mv[:, e] = dFs.mean(axis=-1), dFv.mean(axis=-1)
         if e in hb._rough:
-            redo |= {i for i in range(P) if not el.sampled_exactly(S[i, e], Sd[i, e], s.eps)}
-    for e, proj, sa, sda, sdb in hb._pw:
-        for i in range(P):
-            Cs = A[i, e] + sa
-            Cv = Om[i, 0, 0] * (A[i, e] @ hb.D) + sda + omegas[i] * sdb
-            r = proj.evaluate(Cs, Cv, S[i, e], J=J, jac=True)
-            out[i, e] = r["F"][2 * H + 1:]
-            ms[i, e], mv[i, e] = r["spec_s"][0].real, r["spec_v"][0].real
+            redo |= set(np.flatnonzero(~hb.rough_exact_batch(e, S[:, e], Sd[:, e])).tolist())
+    for k, (e, proj, sa, sda, sdb) in enumerate(hb._pw):
+        Cs = A[:, e] + sa
+        Cv = Om[:, 0] * (A[:, e] @ hb.D) + sda + omegas[:, None] * sdb
+        F, ms[:, e], mv[:, e] = hb.pw_projections(k, Cs, Cv, S[:, e], J)
+        out[:, e] = F[:, 2 * H + 1:]
     for i in sorted(redo):                                         # the dense grid for these orbits
         Fp, spec_s, spec_v, _, _ = hb.element_projection(Q[i], omegas[i], jac=True, J=J)
         out[i] = Fp[:, 2 * H + 1:]

@@ -37,6 +37,11 @@ from ...errors import ModelError
 WORK = ("conservative", "friction", "contacts", "elements")
 
 
+#: codes of :meth:`Element.compiled_law` (the compiled harmonic-balance kernel's laws)
+LAW_CUBIC = 1              # F = -k3 s^3
+LAW_TANH_FRICTION = 2      # F = -a0 tanh(w / eps) - a1 w - a2 w |w| - a3 w^3, w = s' - v0
+
+
 @dataclass(frozen=True)
 class Linearisation:
     """What a linear analysis (modal, forced, Campbell) puts in place of a nonsmooth element: a
@@ -247,6 +252,13 @@ class Element:
         (:class:`PiecewiseAffineLaw`: ``F = a_p + b_p s + c_p s'`` between the
         breaks), which harmonic balance integrates exactly over the crossings; None (default): the law is
         sampled (AFT)."""
+        return None
+
+    def compiled_law(self, eps: float):
+        """The smooth law as the compiled harmonic-balance kernel evaluates it (discrete/steady/hb_kernel.py):
+        ``(code, parameters)`` with code ``LAW_CUBIC`` (k3) or ``LAW_TANH_FRICTION`` (a0, a1, a2, a3, the
+        surface velocity, eps), or None (default): the kernel then takes the law only through
+        :meth:`piecewise_law` (integrated exactly), and a model with any other law is evaluated by numpy."""
         return None
 
     n_memory = 0

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .base import Element, Linearisation, StepLaw
+from .base import LAW_CUBIC, Element, Linearisation, StepLaw
 
 
 @dataclass
@@ -30,6 +30,9 @@ class Cubic(Element):
 
     def smooth_force(self, s, sd, eps):
         return -self.k3 * s ** 3, -3 * self.k3 * s ** 2, np.zeros_like(s)
+
+    def compiled_law(self, eps):
+        return LAW_CUBIC, (float(self.k3),)
 
     def regularised_force(self, s, sd, t, memory, settings):
         return -self.k3 * s ** 3, ()

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .base import Element, Linearisation, StepLaw
+from .base import LAW_TANH_FRICTION, Element, Linearisation, StepLaw
 
 
 @dataclass
@@ -154,6 +154,11 @@ class Friction(Element):
             F = F - self.cubic * w * w * w
             dF = dF - 3 * self.cubic * w * w
         return F, np.zeros_like(s), dF
+
+    def compiled_law(self, eps):
+        """:meth:`smooth_force` for the compiled kernel (the same terms, zero ones left out there too)."""
+        return LAW_TANH_FRICTION, (float(self.kinetic), float(self.viscous), float(self.quadratic),
+                                   float(self.cubic), float(self.surface_velocity), float(eps))
 
     def sampled_exactly(self, s, sd, eps):
         """Saturated: the slip velocity w keeps one sign with |w| >= 20 eps all along the orbit (the
