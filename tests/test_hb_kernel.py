@@ -145,3 +145,35 @@ def test_which_models_use_the_kernel(monkeypatch):
     assert not HBModel(gap.system, harmonics=11, kinks="sampled")._kernel()   # a sampled kink: numpy
     monkeypatch.setattr(hbmod, "COMPILED", False)
     assert not HBModel(gap.system, harmonics=11)._kernel()
+
+
+def test_the_command_keeps_the_kernel_to_large_models(monkeypatch):
+    """DRIVEFEM_JIT=large (what the drivefem program sets for its one-shot process): an exact-kink model of
+    one DOF by numpy (numba's ~0.5 s load would not pay back in one curve), a large one compiled."""
+    monkeypatch.setenv("DRIVEFEM_JIT", "large")
+    gap = MODELS["gap"]()
+    assert not HBModel(gap.system, harmonics=11)._kernel()
+    assert HBModel(gap.system, harmonics=11, compiled=True)._kernel()
+    assert HBModel(MODELS["duffing"]().system, harmonics=60)._kernel()       # 121 unknowns
+
+
+def test_the_program_sets_the_one_shot_policy_only_as_a_program(monkeypatch, tmp_path):
+    """fem.app.cli.main() as the console script sets DRIVEFEM_JIT=large unless the user set it; main(argv)
+    (tests, Python sessions) leaves the process environment alone."""
+    import os
+    import subprocess
+    import sys
+
+    from fem.app import cli
+
+    monkeypatch.delenv("DRIVEFEM_JIT", raising=False)
+    assert cli.main(["schema"]) == 0
+    assert "DRIVEFEM_JIT" not in os.environ
+    code = ("import os, sys; from fem.app import cli; sys.argv = ['drivefem', 'schema']; rc = cli.main(); "
+            "print('JIT', os.environ.get('DRIVEFEM_JIT'), rc)")
+    env = {k: v for k, v in os.environ.items() if k != "DRIVEFEM_JIT"}
+    for given, expected in ((None, "large"), ("always", "always"), ("0", "0")):
+        if given is not None:
+            env["DRIVEFEM_JIT"] = given
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
+        assert out.stdout.strip().splitlines()[-1] == f"JIT {expected} 0", out.stderr[-2000:]

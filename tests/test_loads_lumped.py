@@ -497,3 +497,16 @@ def test_steady_curve_outputs_of_a_model_without_elements():
     r = st.forced()
     loads = st.outputs(r)
     assert loads and all(len(o["amplitude"]) == r.omega.size for o in loads.values())
+
+
+@pytest.mark.parametrize("name", ["cam_clearance.toml", "discrete_gap_backlash.toml", "parametric_drive.toml",
+                                  "steady_duffing.toml", "hybrid_afc_vibro_impact.toml"])
+def test_basis_many_is_the_scalar_basis_bit_for_bit(name):
+    """Problem.basis_many (the named outputs' and recover's exogenous states over a whole record) gives
+    exactly the values of Problem.basis instant by instant: harmonics and programme laws (cam, knots)."""
+    st = Study.load(EXAMPLES / name)
+    p = st.compiled.problem if st.kind == "hybrid" else st.problem_spec().problem()
+    t = np.concatenate([np.linspace(0.0, 3.0, 997), [0.0, 1e-12, 2.5]])
+    E = p.basis_many(t)
+    assert E.shape == (p.ne, t.size)
+    assert np.array_equal(E, np.array([p.basis(tk) for tk in t]).T)

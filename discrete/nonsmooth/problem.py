@@ -266,6 +266,18 @@ class Problem:
             e[sl] = src.at_time(t)[1]
         return e
 
+    def basis_many(self, t) -> np.ndarray:
+        """:meth:`basis` at every instant of ``t`` (columns, ``(ne, len(t))``): the harmonic rows as whole
+        arrays (the same values as the scalar calls), the programme laws instant by instant."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        E = np.zeros((self.ne, t.size))
+        E[0], E[1] = 1.0, t
+        for k, w in enumerate(self.omegas):
+            E[2 + 2 * k], E[3 + 2 * k] = np.sin(w * t), np.cos(w * t)
+        for src, sl in zip(self.sources, self.source_slices):
+            E[sl] = np.array([src.at_time(tk)[1] for tk in t]).T.reshape(-1, t.size)
+        return E
+
     def exogenous_after(self, e, t0, t1) -> np.ndarray:
         """e at t1 from e at t0 with no knot in between (closed forms; the base basis at t1)."""
         out = self.basis_base(t1)
@@ -319,7 +331,7 @@ class Problem:
         q'' from the equations of motion with the recorded element forces -- for an integrator that
         records no acceleration (regularised, Moreau-Jean: its forces are impulse / dt)."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        E = np.array([self.basis(tk) for tk in t]).T.reshape(self.ne, t.size)
+        E = self.basis_many(t)
         f = self.f
         rhs = -self.K @ x[f] - (self.C + self.Cr) @ xd[f] - self.B @ E + self.Fx @ E
         if self.n_el:

@@ -75,7 +75,7 @@ def simulate_regularised(prob: Problem, t_end: float, regularisation: float | No
     sol = solve_ivp(fun, (0.0, t_end), y0, method=method, rtol=rtol, atol=rtol * 1e-3 * max(1e-300, np.max(np.abs(y0)) + 1e-3),
                     t_eval=t_eval, **kw)
     nf = prob.nf
-    E = np.array([prob.basis(t) for t in sol.t]).T
+    E = prob.basis_many(sol.t)
     x, xd = prob.full_state(sol.y[:nf], sol.y[nf:2 * nf], E)
     res = SimulationResult(t=sol.t, x=x, v=xd, names=list(prob.names), events=[], t_end=float(t_end),
                            energy=np.zeros(0), work=np.zeros(0), energy_error=float("nan"), n_steps=int(sol.nfev),

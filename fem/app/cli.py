@@ -113,7 +113,12 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 def main(argv: list[str] | None = None) -> int:
     """Parse, then run the command.  The commands (and numpy, scipy, scikit-fem behind them) are
     imported inside the handlers, so a Ctrl-C during those imports (the first ~0.6 s) ends as
-    cleanly as one during a run."""
+    cleanly as one during a run.  Run as the ``drivefem`` program (``argv`` None), a command is one analysis
+    in a fresh process: the compiled HB kernel only for large models (DRIVEFEM_JIT=large unless set, which
+    its worker processes inherit; discrete.steady.hb.compiled_evaluation).  Called with ``argv`` (tests, a
+    Python session) the process's setting is left as it is."""
+    if argv is None:
+        os.environ.setdefault("DRIVEFEM_JIT", "large")
     try:
         args = build_parser().parse_args(argv)
         with warnings.catch_warnings():

@@ -44,7 +44,7 @@ def _hb_orbits(sm, res, points: int):
     for X, w in zip(res.states, res.omega):
         p = sm.factory(float(w))
         t, q, v = hb.evaluate(np.asarray(X), float(w), points=max(points, hb.N))
-        E = np.array([p.basis(tk) for tk in t]).T
+        E = p.basis_many(t)
         x, xd = p.full_state(q, v, E)
         F = sm.system.element_series(t, q, v, float(w))[0] if sm.system.elements else np.zeros((0, t.size))
         a, f = p.recover(t, x, xd, F)

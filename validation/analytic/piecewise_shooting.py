@@ -136,15 +136,22 @@ class PiecewiseLinearOscillator:
         return self.flow(y0, w, phi, nu * 2 * np.pi / w)
 
     def periodic(self, y0, w, phi=0.0, nu=1, tol=1e-13, maxit=50):
-        """Fixed point of the period map (Newton with the exact monodromy) and its multipliers."""
+        """Fixed point of the period map (Newton with the exact monodromy) and its multipliers.
+
+        Converged when the step is below ``tol`` (relative), or when it has reached the round-off floor
+        of the map: a step no smaller than the one before and below 1e-11 relative (near a fold
+        Phi - I is ill-conditioned and the step alternates at ~cond * eps instead of falling below tol)."""
         y = np.array(y0, float)
+        last = np.inf
         for _ in range(maxit):
             P, Phi, _ = self.period_map(y, w, phi, nu)
             dy = np.linalg.solve(Phi - np.eye(2), -(P - y))
             y = y + dy
-            if np.max(np.abs(dy)) <= tol * max(np.max(np.abs(y)), 1e-300):
+            step = np.max(np.abs(dy)) / max(np.max(np.abs(y)), 1e-300)
+            if step <= tol or (step >= last and step <= 1e-11):
                 P, Phi, _ = self.period_map(y, w, phi, nu)
                 return y, np.linalg.eigvals(Phi)
+            last = step
         raise RuntimeError(f"no periodic orbit found at w = {w}")
 
     def phase_solution(self, phi, A0, w0, nu=1, symmetric=False, tol=1e-13, maxit=60):
