@@ -177,3 +177,9 @@ def test_the_program_sets_the_one_shot_policy_only_as_a_program(monkeypatch, tmp
             env["DRIVEFEM_JIT"] = given
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
         assert out.stdout.strip().splitlines()[-1] == f"JIT {expected} 0", out.stderr[-2000:]
+    # a long-lived command (drivefem validate: ~170 cases in one process) keeps the session's rule
+    env.pop("DRIVEFEM_JIT")
+    code = code.replace("['drivefem', 'schema']", "['drivefem', 'validate', '--case', 'no-such-case']")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert out.stdout.strip().splitlines()[-1].startswith("JIT None "), out.stdout[-2000:] + out.stderr[-2000:]
+    assert "validate" in cli.LONG_LIVED and "forced" not in cli.LONG_LIVED

@@ -110,17 +110,22 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
     print(f"drivefem: warning: {message}", file=sys.stderr)
 
 
+#: commands that run many analyses in one process (numba's one-off load of the HB kernel pays back there)
+LONG_LIVED = ("validate", "sweep", "demo")
+
+
 def main(argv: list[str] | None = None) -> int:
     """Parse, then run the command.  The commands (and numpy, scipy, scikit-fem behind them) are
     imported inside the handlers, so a Ctrl-C during those imports (the first ~0.6 s) ends as
-    cleanly as one during a run.  Run as the ``drivefem`` program (``argv`` None), a command is one analysis
-    in a fresh process: the compiled HB kernel only for large models (DRIVEFEM_JIT=large unless set, which
-    its worker processes inherit; discrete.steady.hb.compiled_evaluation).  Called with ``argv`` (tests, a
-    Python session) the process's setting is left as it is."""
-    if argv is None:
-        os.environ.setdefault("DRIVEFEM_JIT", "large")
+    cleanly as one during a run.  Run as the ``drivefem`` program (``argv`` None), an analysis command is
+    one analysis in a fresh process: the compiled HB kernel only for large models (DRIVEFEM_JIT=large unless
+    set, which its worker processes inherit; discrete.steady.hb.compiled_evaluation); the long-lived
+    commands (:data:`LONG_LIVED`: many analyses in one process) and calls with ``argv`` (tests, a Python
+    session) leave the process's setting as it is."""
     try:
         args = build_parser().parse_args(argv)
+        if argv is None and args.command not in LONG_LIVED:
+            os.environ.setdefault("DRIVEFEM_JIT", "large")
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             warnings.showwarning = _show_warning
