@@ -365,7 +365,7 @@ def readme_table(runs: list[ScriptRun], meta: dict) -> str:
                 f"{meta['load_start']} at the start, {meta['load_end']} at the end; BLAS: {meta['blas']}). "
                 f"Ratios of the medians of runs timed in the same process run (interleaved); wall-time figures judge "
                 f"the targets, CPU-time figures in brackets; the number of runs, their spread and each script's full "
-                f"output in [docs/benchmarks.md](docs/benchmarks.md)."
+                f"output in [{meta.get('doc_link', 'benchmarks.md')}]({meta.get('doc_link', 'benchmarks.md')})."
                 + (" Rows marked *stored run* were not re-run by this report (`make bench` skips the scripts that "
                    "take several minutes each; `python benchmarks/report.py --all` runs every one): their figures "
                    "are from docs/benchmarks.json, of the date shown." if stored else ""))
@@ -544,6 +544,7 @@ def main(argv=None) -> int:
         if loads:
             meta["load_start"] = f"{_fmt_load(loads[0])} (first record)"
             meta["load_end"] = f"{_fmt_load(loads[-1])} (last record)"
+    meta["doc_link"] = os.path.relpath(a.doc.resolve(), a.readme.resolve().parent)   # from the summary file
     table = readme_table(runs, meta)
     print("\n" + table)
     print(f"\n{meta['total']}; report took {total:.0f} s")

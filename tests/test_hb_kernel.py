@@ -183,3 +183,47 @@ def test_the_program_sets_the_one_shot_policy_only_as_a_program(monkeypatch, tmp
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
     assert out.stdout.strip().splitlines()[-1].startswith("JIT None "), out.stdout[-2000:] + out.stderr[-2000:]
     assert "validate" in cli.LONG_LIVED and "forced" not in cli.LONG_LIVED
+
+
+@pytest.mark.parametrize("name", ["hybrid_afc_vibro_impact.toml", "hybrid_afc_friction_rod.toml"])
+def test_condensation_compiled_equals_numpy(name):
+    """The condensed HB model (condense_kernel: the operator, the real Jacobian, the condensed linear residual,
+    the expansion; the inner element model as the full one decides) against the same model all by numpy."""
+    from discrete.steady.condense import CondensedHB
+    from fem.study import Study
+    from validation.examples import example_doc
+
+    d = example_doc(name)
+    sm = Study.parse(d).steady_model()
+    c = sm.cfg
+    hb = HBModel(sm.system, harmonics=c.harmonics, nu=c.subharmonic, samples=c.samples)
+    a, b = CondensedHB(hb), CondensedHB(hb, compiled=False)
+    assert a.compiled and a.inner._kernel() and not b.compiled and not b.inner._kernel()
+    lo, hi = c.range
+    for w in (lo, 0.5 * (lo + hi), hi):
+        Xf, _ = hb.solve(hb.linear_guess(w), w)
+        X = a.restrict(Xf) * 1.3                       # beyond the linear orbit: the nonlinear element acts
+        for p, q in zip(a.evaluate_residual(X, w, dw=True), b.evaluate_residual(X, w, dw=True)):
+            assert np.max(np.abs(p - q)) <= 1e-12 * np.max(np.abs(q))
+        ea, eb = a.expand(X, w), b.expand(X, w)
+        assert np.max(np.abs(ea - eb)) <= 1e-12 * np.max(np.abs(eb))
+
+
+def test_large_policy_decides_the_condensed_model_as_the_full_one(monkeypatch):
+    """DRIVEFEM_JIT=large: the vibro-impact cantilever (4 DOFs, H = 25: 204 unknowns) is large, so its
+    condensed model (51 unknowns on the stop's DOF) is compiled too -- not numba loaded for a numpy inner
+    model; an unknown DRIVEFEM_JIT value is refused with the variable's name."""
+    from discrete.errors import ModelError
+    from discrete.steady.condense import CondensedHB
+    from fem.study import Study
+    from validation.examples import example_doc
+
+    monkeypatch.setenv("DRIVEFEM_JIT", "large")
+    sm = Study.parse(example_doc("hybrid_afc_vibro_impact.toml")).steady_model()
+    c = sm.cfg
+    hb = HBModel(sm.system, harmonics=c.harmonics, nu=c.subharmonic, samples=c.samples)
+    cond = CondensedHB(hb)
+    assert cond.compiled and cond.inner._kernel() and cond.inner.nq < hbmod.COMPILED_MIN_UNKNOWNS
+    monkeypatch.setenv("DRIVEFEM_JIT", "off")
+    with pytest.raises(ModelError, match="DRIVEFEM_JIT"):
+        HBModel(MODELS["gap"]().system, harmonics=11)._kernel()

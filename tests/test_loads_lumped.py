@@ -510,3 +510,11 @@ def test_basis_many_is_the_scalar_basis_bit_for_bit(name):
     E = p.basis_many(t)
     assert E.shape == (p.ne, t.size)
     assert np.array_equal(E, np.array([p.basis(tk) for tk in t]).T)
+
+
+def test_basis_many_of_no_instant_is_empty():
+    """An empty record (no instant) gives an (ne, 0) array, programme laws or not."""
+    for name in ("cam_clearance.toml", "steady_duffing.toml"):
+        st = Study.load(EXAMPLES / name)
+        p = st.problem_spec().problem()
+        assert p.basis_many(np.zeros(0)).shape == (p.ne, 0)

@@ -274,8 +274,9 @@ class Problem:
         E[0], E[1] = 1.0, t
         for k, w in enumerate(self.omegas):
             E[2 + 2 * k], E[3 + 2 * k] = np.sin(w * t), np.cos(w * t)
-        for src, sl in zip(self.sources, self.source_slices):
-            E[sl] = np.array([src.at_time(tk)[1] for tk in t]).T.reshape(-1, t.size)
+        if t.size:
+            for src, sl in zip(self.sources, self.source_slices):
+                E[sl] = np.array([src.at_time(tk)[1] for tk in t]).T.reshape(-1, t.size)
         return E
 
     def exogenous_after(self, e, t0, t1) -> np.ndarray:

@@ -124,8 +124,11 @@ class CondensedHB:
         self.l = np.setdiff1d(np.arange(s.n), self.c)
         # the element part exactly as the full model evaluates it: the same grids (N, and N_fine for rough
         # laws) and the same kinks option (piecewise-affine laws integrated exactly over their crossings)
+        # compiled or numpy as the full model is (hb.compiled_evaluation decides on the full model's size and
+        # laws, and DRIVEFEM_JIT): the inner model and the condensation follow that one decision
+        self._use_kernel = bool(compiled) and bool(full._kernel())
         self.inner = HBModel(CouplingSystem(s, self.c), harmonics=full.H, nu=full.nu, samples=full.samples,
-                             kinks=full.kinks)
+                             kinks=full.kinks, compiled=self._use_kernel)
         H = self.H
         self.k = np.arange(H + 1)
         M, C, K = (np.asarray(a, float) for a in (s.M, s.C, s.K))
@@ -139,7 +142,7 @@ class CondensedHB:
         self._F = np.stack([self._complex(f @ full.Pm) for f in (g.fa, g.fb, g.fc, g.fd)])   # (4, H+1, n)
         self._cache: dict = {}
         self._cache_size = max(1, int(cache))
-        self.compiled = bool(compiled)
+        self.compiled = self._use_kernel
         nc, m = self.c.size, self.m
         self.nq = nc * m
         # positions of the real 2x2 blocks [[Sr, Si], [-Si, Sr]] in the (nc, m, nc, m) Jacobian

@@ -22,7 +22,7 @@ import numpy as np
 from scipy.sparse import csr_matrix
 
 from ..linalg.expm import expm_batch
-from ..errors import SolverError
+from ..errors import ModelError, SolverError
 
 
 class HBModel:
@@ -569,8 +569,20 @@ class HBModel:
 #: compiled kernel for every model it can evaluate (a long-lived process: numba's load is paid once);
 #: =large: only for models with n (2H+1) >= COMPILED_MIN_UNKNOWNS (the ``drivefem`` command's default:
 #: a one-shot process, see compiled_evaluation); unset or 1: the rule of compiled_evaluation
+#: (0 and always are read when this module is imported, large at every decision: the program sets it at start)
 COMPILED = os.environ.get("DRIVEFEM_JIT", "1") != "0"
 COMPILED_ALWAYS = os.environ.get("DRIVEFEM_JIT", "") == "always"
+#: the values DRIVEFEM_JIT may take (anything else: a ModelError naming the variable)
+JIT_VALUES = ("0", "1", "large", "always")
+
+
+def jit_setting() -> str:
+    """DRIVEFEM_JIT as set (``1`` when unset), checked against :data:`JIT_VALUES`."""
+    value = os.environ.get("DRIVEFEM_JIT", "1")
+    if value not in JIT_VALUES:
+        raise ModelError("environment", "DRIVEFEM_JIT", value,
+                         "0 (numpy HB), 1 (the default rule), large (compiled for large models only) or always")
+    return value
 
 
 #: the compiled kernel for models with at least this many HB unknowns n (2H+1) (see compiled_evaluation)
@@ -580,23 +592,25 @@ COMPILED_MIN_UNKNOWNS = 120
 def compiled_evaluation(model: HBModel, force: bool = False):
     """The compiled evaluation of ``model`` (:class:`.hb_kernel.CompiledHB`), or False (numpy then).
 
-    Which models (decided per model, never by the state of the process, so that a curve's numbers do not
-    depend on what ran before it): those whose numpy evaluation is expensive -- an exactly integrated
+    Which models (decided per model and the DRIVEFEM_JIT setting, never by what ran before in the process,
+    so that a curve's numbers do not depend on it): those whose numpy evaluation is expensive -- an exactly integrated
     piecewise law (its crossings and Toeplitz products: ~200 us to 2 ms per evaluation in numpy, 15-50 us
     compiled), a rough law evaluated on the dense grid (friction: ~1.2 ms / 0.6 ms), or n (2H+1) >=
     ``COMPILED_MIN_UNKNOWNS`` (the dense Jacobian's assembly) -- and only when numba is installed, every
-    law is compiled or exactly integrated, and DRIVEFEM_JIT is not 0.  Loading numba and the cached kernel
-    costs ~0.25 s of CPU once per process (measured: import 0.09 s, the first call 0.17 s), which a small
-    smooth model (a one-DOF Duffing oscillator: ~45 us per numpy evaluation) would not recover in a
-    curve of ~500 evaluations: its fresh ``drivefem forced`` stays at ~0.6 s.  ``force``: whenever possible.
+    law is compiled or exactly integrated, and DRIVEFEM_JIT is not 0.  A small smooth model (a one-DOF
+    Duffing oscillator: ~45 us per numpy evaluation) stays with numpy: numba's load would not pay back in a
+    curve of ~500 evaluations.  ``force``: whenever possible.
 
-    The ``drivefem`` command runs one analysis per process: it sets DRIVEFEM_JIT=large (unless set), which
-    keeps the kernel to the large models.  Measured (quiet machine): the kernel's load is ~0.5 s in a fresh
-    process, while on a one-DOF stop (H = 15, kinks exact) it saves ~35 ms of a curve -- the fresh command
-    took 1.35 s with it against 0.86 s without.  In a Python session the load is paid once and the exact-kink
-    and rough models take the kernel (seed 002's AFC 2.7-3.7x faster).  Both paths agree to 1e-12."""
+    The ``drivefem`` program's analysis commands run one analysis per process: they set DRIVEFEM_JIT=large
+    (unless set), which keeps the kernel to the large models.  Measured on a quiet machine: numba and the
+    cached kernel load in ~0.5 s in a fresh process (the first estimate, import 0.09 s + first call 0.17 s,
+    covered fewer of the kernel's functions), while on a one-DOF stop (H = 15, kinks exact) the kernel saves
+    ~35 ms of a curve -- the fresh command took 1.35 s with it against 0.86 s without.  In a Python session
+    the load is paid once and the exact-kink and rough models take the kernel (seed 002's AFC 2.6-3.7x
+    faster).  Both paths agree to ~1e-12 in every evaluation; a curve's derived quantities (a branch point
+    located to its bisection's resolution) may differ by more (docs/steady.md)."""
     large = model.nq >= COMPILED_MIN_UNKNOWNS
-    if os.environ.get("DRIVEFEM_JIT", "") == "large" and not (force or large):
+    if jit_setting() == "large" and not (force or large):
         return False
     if not (force or COMPILED_ALWAYS or model._pw or model._rough or large):
         return False

@@ -126,6 +126,9 @@ def main(argv: list[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
         if argv is None and args.command not in LONG_LIVED:
             os.environ.setdefault("DRIVEFEM_JIT", "large")
+        if os.environ.get("DRIVEFEM_JIT", "1") not in ("0", "1", "large", "always"):
+            raise ModelError("environment", "DRIVEFEM_JIT", os.environ["DRIVEFEM_JIT"],
+                             "0 (no compiled kernels), 1 (the default rule), large or always")
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             warnings.showwarning = _show_warning

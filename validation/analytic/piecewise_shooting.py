@@ -139,7 +139,8 @@ class PiecewiseLinearOscillator:
         """Fixed point of the period map (Newton with the exact monodromy) and its multipliers.
 
         Converged when the step is below ``tol`` (relative), or when it has reached the round-off floor
-        of the map: a step no smaller than the one before and below 1e-11 relative (near a fold
+        of the map: a step no smaller than the one before, below 1e-11 relative in each component
+        (position and velocity scaled apart), and the closing error |P(y) - y| as small (near a fold
         Phi - I is ill-conditioned and the step alternates at ~cond * eps instead of falling below tol)."""
         y = np.array(y0, float)
         last = np.inf
@@ -148,9 +149,15 @@ class PiecewiseLinearOscillator:
             dy = np.linalg.solve(Phi - np.eye(2), -(P - y))
             y = y + dy
             step = np.max(np.abs(dy)) / max(np.max(np.abs(y)), 1e-300)
-            if step <= tol or (step >= last and step <= 1e-11):
+            if step <= tol:
                 P, Phi, _ = self.period_map(y, w, phi, nu)
                 return y, np.linalg.eigvals(Phi)
+            scale = np.maximum(np.abs(y), 1e-300)
+            floor = np.max(np.abs(dy) / scale)
+            if step >= last and floor <= 1e-11:
+                P, Phi, _ = self.period_map(y, w, phi, nu)
+                if np.max(np.abs(P - y) / scale) <= 1e-11:
+                    return y, np.linalg.eigvals(Phi)
             last = step
         raise RuntimeError(f"no periodic orbit found at w = {w}")
 
