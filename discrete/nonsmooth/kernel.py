@@ -15,20 +15,10 @@ crossing, refined by safeguarded Newton on the guard along the exact local expan
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
-try:
-    if os.environ.get("DRIVEFEM_JIT", "1") == "0":
-        raise ImportError("disabled by DRIVEFEM_JIT=0")
-    from numba import njit
-    JIT = True
-except ImportError:              # plain Python: the same results, slower
-    JIT = False
-
-    def njit(*args, **kwargs):
-        return (lambda f: f) if not args or not callable(args[0]) else args[0]
+from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
 
 
 END, EVENT, FULL = 0, 1, 2       # why advance() returned: t_end reached, an event, output buffer full

@@ -12,20 +12,10 @@ without the ~30 numpy calls per frequency that dominate it for a few DOFs.
 """
 from __future__ import annotations
 
-import os
 
 import numpy as np
 
-try:
-    if os.environ.get("DRIVEFEM_JIT", "1") == "0":
-        raise ImportError("disabled by DRIVEFEM_JIT=0")
-    from numba import njit
-    JIT = True
-except ImportError:              # plain Python: the same results, slower
-    JIT = False
-
-    def njit(*args, **kwargs):
-        return (lambda f: f) if not args or not callable(args[0]) else args[0]
+from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
 
 
 @njit(cache=True)

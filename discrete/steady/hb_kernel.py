@@ -25,22 +25,12 @@ with the numpy path on every kind of law (tests/test_hb_kernel.py).
 """
 from __future__ import annotations
 
-import os
 
 import numpy as np
 
 from ..nonsmooth.elements.base import LAW_CUBIC, LAW_TANH_FRICTION
 
-try:
-    if os.environ.get("DRIVEFEM_JIT", "1") == "0":
-        raise ImportError("disabled by DRIVEFEM_JIT=0")
-    from numba import njit
-    JIT = True
-except ImportError:              # plain Python: the same results, slow
-    JIT = False
-
-    def njit(*args, **kwargs):
-        return (lambda f: f) if not args or not callable(args[0]) else args[0]
+from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
 
 LAW_PIECEWISE = 3                # an exactly integrated piecewise-affine law
 TWO_PI = 2.0 * np.pi
