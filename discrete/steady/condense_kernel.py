@@ -12,7 +12,6 @@ without the ~30 numpy calls per frequency that dominate it for a few DOFs.
 """
 from __future__ import annotations
 
-
 import numpy as np
 
 from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)

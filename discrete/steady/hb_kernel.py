@@ -18,19 +18,19 @@ and 15 harmonics, 5-15 us here):
   plain Newton does not settle), the interval spectra, the two Toeplitz products, the moving-boundary
   matrix of a law that jumps;
 * the element Jacobian blocks ``T(cs) + Om T(cv) D^T`` from the spectra by the product-to-sum maps of
-  :func:`.hb._galerkin_maps`, summed per DOF pair with the elements' weights.
+  :func:`.harmonics.galerkin_maps`, summed per DOF pair with the elements' weights.
 
 ``DRIVEFEM_JIT=0`` runs the same source as plain Python (slow; for debugging).  Tests compare the kernel
 with the numpy path on every kind of law (tests/test_hb_kernel.py).
 """
 from __future__ import annotations
 
-
 import numpy as np
 
-from ..nonsmooth.elements.base import LAW_CUBIC, LAW_TANH_FRICTION
-
 from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
+from ..nonsmooth.elements.base import LAW_CUBIC, LAW_TANH_FRICTION
+from .harmonics import basis as _basis
+from .harmonics import galerkin_maps as _galerkin_maps
 
 LAW_PIECEWISE = 3                # an exactly integrated piecewise-affine law
 TWO_PI = 2.0 * np.pi
@@ -824,8 +824,6 @@ class CompiledHB:
     None when an element's law is neither compiled (``Element.compiled_law``) nor exactly integrated."""
 
     def __init__(self, hb, codes, par):
-        from .hb import _basis, _galerkin_maps
-
         s = hb.s
         H, m, N = hb.H, hb.m, hb.N
         nel = len(s.elements)

@@ -1,0 +1,35 @@
+"""The harmonic bases of harmonic balance, shared by the numpy path (:mod:`.hb`) and the compiled kernel
+(:mod:`.hb_kernel`): the real trigonometric basis at sample phases, and the index and sign maps of the
+Galerkin products (cos a cos b = (cos(a - b) + cos(a + b)) / 2, ...)."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def basis(H: int, th) -> np.ndarray:
+    """[1, cos th, sin th, ..., cos H th, sin H th] at the phases th: (2H+1, len(th))."""
+    G = np.ones((2 * H + 1, np.size(th)))
+    for k in range(1, H + 1):
+        G[2 * k - 1] = np.cos(k * th)
+        G[2 * k] = np.sin(k * th)
+    return G
+
+
+def galerkin_maps(H: int):
+    """Index and sign maps of :meth:`.hb.HBModel.galerkin`: with V = [C_0..C_2H, S_0..S_2H] (the sums of
+    c cos(j th), c sin(j th)), T[k, l] = W_k / 2 (c1 V[i1] + c2 V[i2])."""
+    m = 2 * H + 1
+    freq = np.array([0] + [k for k in range(1, H + 1) for _ in (0, 1)])
+    sine = np.array([False] + [s for _ in range(1, H + 1) for s in (False, True)])
+    a, b = freq[:, None], freq[None, :]
+    sk, sl = sine[:, None], sine[None, :]
+    d, p = np.abs(a - b), a + b
+    sgn = np.sign(a - b)
+    off = 2 * H + 1
+    same = sk == sl
+    # cos-cos: C_d + C_p;  sin-sin: C_d - C_p;  cos(k) sin(l): S_p - sgn S_d;  sin(k) cos(l): S_p + sgn S_d
+    i1 = np.where(same, d, off + p)
+    i2 = np.where(same, p, off + d)
+    c1 = np.ones((m, m))
+    c2 = np.where(same, np.where(sk, -1.0, 1.0), np.where(sk, sgn, -sgn)).astype(float)
+    return i1, i2, c1, c2
