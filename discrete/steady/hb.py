@@ -305,18 +305,7 @@ class HBModel:
             return self._evaluate_piecewise(Q, QD, QDD, R, omega, jac, dw)
         if nel:
             g = self._grid
-            A = s.Gf @ Q
-            SG = np.concatenate([A, A @ self.D]) @ self.G          # [A G; A D G]
-            S, ADG = SG[:nel], SG[nel:]
-            if self._exo[0]:
-                S = S + g.sa
-            if self._exo[1]:
-                S = S + g.sb / omega
-            Sd = Om * ADG
-            if self._exo[2]:
-                Sd = Sd + g.sda
-            if self._exo[3]:
-                Sd = Sd + omega * g.sdb
+            S, Sd, ADG = self._element_coordinates(s.Gf @ Q, omega)
             F, dFs, dFv = s.element_laws(S, Sd)
             R -= s.Gf.T @ (F @ self.Pm)
         Rw = None
@@ -351,7 +340,7 @@ class HBModel:
         g = self._grid
         Om = omega / self.nu
         nel = A.shape[0]
-        SG = np.concatenate([A, A @ self.D]) @ self.G
+        SG = np.concatenate([A, A @ self.D]) @ self.G          # [A G; A D G]
         S, ADG = SG[:nel], SG[nel:]
         if self._exo[0]:
             S = S + g.sa
