@@ -108,6 +108,24 @@ class ComplexModeFigures:
     def reliable(self) -> np.ndarray:
         return self.residuals < self.tolerance
 
+    @property
+    def n_modes(self) -> int:
+        return int(self.eigenvalues.size)
+
+    def frequency_fields(self) -> dict:
+        """The frequency figures as JSON fields (the rotor and train modal contracts)."""
+        ld = self.log_decrement
+        return {"omega_rad_s": self.omega_damped_rad_s.tolist(), "frequencies_hz": self.frequencies_hz.tolist(),
+                "natural_frequency_rad_s": self.natural_frequency_rad_s.tolist(),
+                "eigenvalues_real": self.eigenvalues.real.tolist(), "eigenvalues_imag": self.eigenvalues.imag.tolist(),
+                "damping_ratio": self.damping_ratio.tolist(),
+                "log_decrement": [None if not np.isfinite(v) else float(v) for v in ld]}
+
+    def reliability_fields(self) -> dict:
+        """Residuals and what they say, as JSON fields (the rotor and train modal contracts)."""
+        return {"residuals": self.residuals.tolist(), "reliable": self.reliable.tolist(),
+                "rigid_body_modes": int(self.rigid.sum()), "method": self.method, "warnings": list(self.warnings)}
+
 
 @dataclass
 class ComplexModalResult(ComplexModeFigures):

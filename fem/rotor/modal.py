@@ -47,23 +47,13 @@ class RotorModes(ComplexModeFigures):
     n_dofs: int
     warnings: list = field(default_factory=list)
 
-    @property
-    def n_modes(self) -> int:
-        return int(self.eigenvalues.size)
-
     def to_dict(self) -> dict:
-        ld = self.log_decrement
         return {"speed_rad_s": self.speed_rad_s, "n_dofs": self.n_dofs, "n_modes": self.n_modes,
-                "omega_rad_s": self.omega_damped_rad_s.tolist(), "frequencies_hz": self.frequencies_hz.tolist(),
-                "natural_frequency_rad_s": self.natural_frequency_rad_s.tolist(),
-                "eigenvalues_real": self.eigenvalues.real.tolist(), "eigenvalues_imag": self.eigenvalues.imag.tolist(),
-                "damping_ratio": self.damping_ratio.tolist(),
-                "log_decrement": [None if not np.isfinite(v) else float(v) for v in ld],
+                **self.frequency_fields(),
                 "whirl": list(self.whirl), "whirl_ratio": self.whirl_ratio.tolist(), "kind": list(self.kind),
                 "node_x": self.node_x.tolist(), "orbit_major": self.orbit_major.tolist(),
                 "orbit_minor": self.orbit_minor.tolist(), "orbit_angle": self.orbit_angle.tolist(),
-                "residuals": self.residuals.tolist(), "reliable": self.reliable.tolist(),
-                "rigid_body_modes": int(self.rigid.sum()), "method": self.method, "warnings": list(self.warnings)}
+                **self.reliability_fields()}
 
 
 def _kinds(rs: RotorSystem, shapes: np.ndarray, rigid: np.ndarray) -> list:

@@ -55,26 +55,14 @@ class TrainModes(ComplexModeFigures):
     speeds_by_member: dict
     warnings: list = field(default_factory=list)
 
-    @property
-    def n_modes(self) -> int:
-        return int(self.eigenvalues.size)
-
     def to_dict(self) -> dict:
-        ld = self.log_decrement
         return {"speed_rad_s": self.speed_rad_s, "speed_rpm": self.speed_rad_s * 30 / np.pi, "n_dofs": self.n_dofs,
-                "n_modes": self.n_modes, "omega_rad_s": self.omega_damped_rad_s.tolist(),
-                "frequencies_hz": self.frequencies_hz.tolist(),
-                "natural_frequency_rad_s": self.natural_frequency_rad_s.tolist(),
-                "eigenvalues_real": self.eigenvalues.real.tolist(), "eigenvalues_imag": self.eigenvalues.imag.tolist(),
-                "damping_ratio": self.damping_ratio.tolist(),
-                "log_decrement": [None if not np.isfinite(v) else float(v) for v in ld],
+                "n_modes": self.n_modes, **self.frequency_fields(),
                 "kind_of_mode": list(self.kind), "energy_share": {"torsion": self.energy_share[:, 0].tolist(),
                                                                    "lateral": self.energy_share[:, 1].tolist(),
                                                                    "axial": self.energy_share[:, 2].tolist()},
                 "whirl": list(self.whirl), "whirl_by_shaft": [dict(w) for w in self.whirl_by_shaft],
-                "speeds_rad_s_by_member": dict(self.speeds_by_member),
-                "residuals": self.residuals.tolist(), "reliable": self.reliable.tolist(),
-                "rigid_body_modes": int(self.rigid.sum()), "method": self.method, "warnings": list(self.warnings)}
+                "speeds_rad_s_by_member": dict(self.speeds_by_member), **self.reliability_fields()}
 
 
 def motion_classes(ts: TrainSystem) -> np.ndarray:
