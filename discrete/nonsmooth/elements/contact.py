@@ -11,6 +11,16 @@ from ...errors import ModelError
 from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
 
 
+def flank_mode(s, sd, upper: float, lower: float) -> int:
+    """The starting mode of a contact between two flanks: +1 beyond ``upper`` (or on it, moving out),
+    -1 beyond ``lower`` (or on it, moving out), else 0 (free)."""
+    if s > upper or (s == upper and sd > 0):
+        return 1
+    if s < lower or (s == lower and sd < 0):
+        return -1
+    return 0
+
+
 def flank_guards(mode: int, s, upper: float, lower: float, e0) -> list:
     """Event functions of a contact between two flanks (``upper``/``lower`` scaled by ``e0``; an
     infinite flank is never reached): in contact (mode +1 / -1) the separation, else closing on
@@ -80,11 +90,7 @@ class Contact(Element):
 
     # ------------------------------------------------------------ event-driven solver
     def initial_mode(self, s, sd, scale_v):
-        if s > self.upper or (s == self.upper and sd > 0):
-            return 1
-        if s < self.lower or (s == self.lower and sd < 0):
-            return -1
-        return 0
+        return flank_mode(s, sd, self.upper, self.lower)
 
     def force(self, mode, s, sd, e0, t):
         if mode == 0:

@@ -7,6 +7,7 @@ import numpy as np
 
 from ...errors import ModelError
 from .base import Element, Linearisation, PiecewiseAffineLaw, StepLaw
+from .contact import flank_event, flank_guards, flank_mode
 
 
 @dataclass
@@ -63,13 +64,7 @@ class Gap(Element):
 
     # ------------------------------------------------------------ event-driven solver
     def initial_mode(self, s, sd, scale_v):
-        if self.law == "arctan":
-            return 0
-        if s > self.upper or (s == self.upper and sd > 0):
-            return 1
-        if s < self.lower or (s == self.lower and sd < 0):
-            return -1
-        return 0
+        return 0 if self.law == "arctan" else flank_mode(s, sd, self.upper, self.lower)
 
     def force(self, mode, s, sd, e0, t):
         if self.law == "arctan":
@@ -81,17 +76,10 @@ class Gap(Element):
         return None
 
     def guards(self, mode, s, sd, F, e0, t):
-        if self.law != "exact":
-            return []
-        if mode == 1:
-            return [(s - self.upper * e0, "leave")]
-        if mode == -1:
-            return [(self.lower * e0 - s, "leave")]
-        return [(self.upper * e0 - s, "close+"), (s - self.lower * e0, "close-")]
+        return flank_guards(mode, s, self.upper, self.lower, e0) if self.law == "exact" else []
 
     def on_event(self, tag, ctx):
-        ctx.mode = {"leave": 0, "close+": 1, "close-": -1}[tag]
-        ctx.record("contact_open" if tag == "leave" else "contact_close")
+        flank_event(tag, ctx)
 
     def potential(self, s, mode):
         if self.law == "arctan":

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...errors import ModelError
 from .base import Element
-from .contact import KelvinVoigtStep, flank_event, flank_guards
+from .contact import KelvinVoigtStep, flank_event, flank_guards, flank_mode
 from .gap import ClearanceSpringStep
 
 
@@ -109,13 +109,7 @@ class MeshContact(Element):
 
     # ------------------------------------------------------------ event-driven solver
     def initial_mode(self, s, sd, scale_v):
-        if self.engaged:
-            return 1
-        if s > self.upper or (s == self.upper and sd > 0):
-            return 1
-        if s < self.lower or (s == self.lower and sd < 0):
-            return -1
-        return 0
+        return 1 if self.engaged else flank_mode(s, sd, self.upper, self.lower)
 
     def force(self, mode, s, sd, e0, t):
         if mode == 0:
