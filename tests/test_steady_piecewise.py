@@ -9,16 +9,7 @@ from discrete.steady import HBModel, bifurcation as bif, measures
 from discrete.steady.hb import floquet_hb_batch
 from discrete.steady.piecewise import ExactProjection, crossings, trig_eval
 from fem.study import forced, steady_model
-
-
-def stop_doc(**steady):
-    d = {"title": "two-sided stop", "body": [{"name": "mass", "inertia": 2.0}],
-         "spring": [{"between": ["ground", "mass"], "k": 8e4}], "damper": [{"between": ["ground", "mass"], "c": 20.0}],
-         "gap": [{"name": "stop", "body": "mass", "k": 8e5, "delta": 1e-3}],
-         "force": [{"body": "mass", "amplitude": 60.0, "omega": 200.0}],
-         "steady": {"method": "hb", "omega": [100.0, 900.0], "harmonics": 15}}
-    d["steady"].update(steady)
-    return d
+from validation.cases.steady_bifurcations import stop_doc  # the issue-27 two-sided stop, as validated
 
 
 def _series(rng, H, scale):
