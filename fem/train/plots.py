@@ -11,18 +11,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ..output.figures.save import save_figure  # noqa: E402
+
 RPM = 30.0 / np.pi
 WHIRL_STYLE = {"forward": ("tab:blue", "-"), "backward": ("tab:red", "--"), "mixed": ("tab:purple", "-."),
                "planar": ("0.4", "-"), "none": ("tab:green", "-"), "axial": ("tab:olive", "-")}
 
 
 def _save(fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, dpi=130)
 
 
 def _dominant(labels):

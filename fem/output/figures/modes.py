@@ -9,6 +9,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .save import save_figure  # noqa: E402
+
 from .quantities import FIELD, common_label, output_quantity  # noqa: E402
 
 
@@ -19,11 +21,7 @@ def _wrap(text: str, width: int = 95) -> str:
 
 
 def _save(fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path, tight=False)
 
 
 def plot_mode_shapes(fe, modal, path: str | Path, n: int | None = None, title: str | None = None) -> Path:
