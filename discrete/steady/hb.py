@@ -572,7 +572,7 @@ def jit_setting() -> str:
     value = os.environ.get("DRIVEFEM_JIT", "1")
     if value not in JIT_VALUES:
         raise ModelError("environment", "DRIVEFEM_JIT", value,
-                         "0 (numpy HB), 1 (the default rule), large (compiled for large models only) or always")
+                         "0 (no compiled kernel), 1 (the default rule), large (the HB kernel for large models only) or always")
     return value
 
 

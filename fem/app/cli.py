@@ -124,11 +124,12 @@ def main(argv: list[str] | None = None) -> int:
     session) leave the process's setting as it is."""
     try:
         args = build_parser().parse_args(argv)
-        if argv is None and args.command not in LONG_LIVED:
-            os.environ.setdefault("DRIVEFEM_JIT", "large")
-        if os.environ.get("DRIVEFEM_JIT", "1") not in ("0", "1", "large", "always"):
-            raise ModelError("environment", "DRIVEFEM_JIT", os.environ["DRIVEFEM_JIT"],
-                             "0 (no compiled kernels), 1 (the default rule), large or always")
+        if "DRIVEFEM_JIT" in os.environ:          # the user's (or a parent's) setting, checked before any work
+            from discrete.steady.hb import jit_setting
+
+            jit_setting()
+        elif argv is None and args.command not in LONG_LIVED:
+            os.environ["DRIVEFEM_JIT"] = "large"
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             warnings.showwarning = _show_warning
