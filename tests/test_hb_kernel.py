@@ -227,3 +227,21 @@ def test_large_policy_decides_the_condensed_model_as_the_full_one(monkeypatch):
     monkeypatch.setenv("DRIVEFEM_JIT", "off")
     with pytest.raises(ModelError, match="DRIVEFEM_JIT"):
         HBModel(MODELS["gap"]().system, harmonics=11)._kernel()
+
+
+def test_the_program_refuses_an_unknown_jit_setting(tmp_path):
+    """DRIVEFEM_JIT=off (not one of 0, 1, large, always): exit 2 before any work, the message naming the
+    variable, its value and the allowed values -- not a silent 'on'."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    model = Path(__file__).resolve().parent.parent / "examples" / "steady_duffing.toml"
+    env = dict(os.environ, DRIVEFEM_JIT="off")
+    code = "import sys; from fem.app import cli; sys.argv = ['drivefem'] + sys.argv[1:]; sys.exit(cli.main())"
+    out = subprocess.run([sys.executable, "-c", code, "forced", str(model), "--json", str(tmp_path / "r.json")],
+                         capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert out.returncode == 2, out.stderr[-2000:]
+    assert "DRIVEFEM_JIT = 'off' is not valid" in out.stderr and "large" in out.stderr and "always" in out.stderr
+    assert not (tmp_path / "r.json").exists()
