@@ -134,11 +134,12 @@ def test_series_extremes_compiled_equals_numpy():
 
 
 def test_which_models_use_the_kernel(monkeypatch):
-    """Expensive numpy evaluations (exact kinks, rough laws, >= 120 unknowns) by default, a small smooth model
-    by numpy (numba's load would cost more than it saves); DRIVEFEM_JIT=0 (COMPILED) switches it off."""
+    """In a Python session every model whose laws the kernel evaluates, a small smooth one included (numba's
+    load is paid once per session); a law it does not evaluate (a sampled kink) by numpy; DRIVEFEM_JIT=0
+    (COMPILED) switches it off."""
     duffing = MODELS["duffing"]()
-    assert not HBModel(duffing.system, harmonics=7)._kernel()
-    assert HBModel(duffing.system, harmonics=7, compiled=True)._kernel()
+    assert HBModel(duffing.system, harmonics=7)._kernel()
+    assert not HBModel(duffing.system, harmonics=7, compiled=False)._kernel()
     assert HBModel(duffing.system, harmonics=60)._kernel()                    # 121 unknowns
     gap = MODELS["gap"]()
     assert HBModel(gap.system, harmonics=11)._kernel()
@@ -151,6 +152,7 @@ def test_the_command_keeps_the_kernel_to_large_models(monkeypatch):
     """DRIVEFEM_JIT=large (what the drivefem program sets for its one-shot process): an exact-kink model of
     one DOF by numpy (numba's ~0.5 s load would not pay back in one curve), a large one compiled."""
     monkeypatch.setenv("DRIVEFEM_JIT", "large")
+    assert not HBModel(MODELS["duffing"]().system, harmonics=7)._kernel()
     gap = MODELS["gap"]()
     assert not HBModel(gap.system, harmonics=11)._kernel()
     assert HBModel(gap.system, harmonics=11, compiled=True)._kernel()

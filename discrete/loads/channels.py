@@ -171,10 +171,37 @@ class LoadMap:
 def time_mean(t: np.ndarray, y: np.ndarray) -> float:
     """Time average of samples y(t) (trapezoid on the recorded instants: event-dense sampling is
     weighted by the time it covers; several samples at one instant add nothing)."""
+    return float(time_means(t, np.asarray(y, dtype=float)[None])[0]) if np.size(y) else 0.0
+
+
+def time_means(t: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """:func:`time_mean` of every row of Y (rows: histories over the instants t)."""
+    t = np.asarray(t, dtype=float)
     span = float(t[-1] - t[0]) if t.size else 0.0
     if span <= 0:
-        return float(np.mean(y)) if y.size else 0.0
-    return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / span)
+        return np.mean(Y, axis=1) if Y.shape[1] else np.zeros(Y.shape[0])
+    return np.sum(0.5 * (Y[:, 1:] + Y[:, :-1]) * np.diff(t), axis=1) / span
+
+
+def summaries(t: np.ndarray, Y: np.ndarray, force_like) -> list[dict]:
+    """:func:`summary` of every row of Y (one history per row over the instants t; ``force_like``: one
+    flag per row), in a few whole-array operations."""
+    Y = np.asarray(Y, dtype=float)
+    if Y.shape[1] == 0:
+        return [summary(t, y, f) for y, f in zip(Y, force_like)]
+    peak = np.max(np.abs(Y), axis=1)
+    hi, lo = np.max(Y, axis=1), np.min(Y, axis=1)
+    mean = time_means(t, Y)
+    rms = np.sqrt(np.maximum(time_means(t, Y * Y), 0.0))
+    out = []
+    for k, f in enumerate(force_like):
+        d = {"peak": float(peak[k]), "max": float(hi[k]), "min": float(lo[k]), "mean": float(mean[k]),
+             "rms": float(rms[k]), "peak_to_peak": float(hi[k] - lo[k])}
+        if f:
+            d["dynamic_load_factor"] = (d["peak"] / abs(d["mean"]) if abs(d["mean"]) > 1e-12 * max(d["peak"], 1e-300)
+                                        else None)
+        out.append(d)
+    return out
 
 
 def summary(t: np.ndarray, y: np.ndarray, force_like: bool) -> dict:
@@ -185,14 +212,7 @@ def summary(t: np.ndarray, y: np.ndarray, force_like: bool) -> dict:
     if y.size == 0:
         return {"peak": None, "max": None, "min": None, "mean": None, "rms": None, "peak_to_peak": None,
                 "dynamic_load_factor": None}
-    peak = float(np.max(np.abs(y)))
-    mean = time_mean(t, y)
-    rms = float(np.sqrt(max(time_mean(t, y * y), 0.0)))
-    d = {"peak": peak, "max": float(np.max(y)), "min": float(np.min(y)), "mean": mean, "rms": rms,
-         "peak_to_peak": float(np.max(y) - np.min(y))}
-    if force_like:
-        d["dynamic_load_factor"] = peak / abs(mean) if abs(mean) > 1e-12 * max(peak, 1e-300) else None
-    return d
+    return summaries(t, y[None], [force_like])[0]
 
 
 def amplitude_summary(z: np.ndarray) -> dict:

@@ -18,8 +18,8 @@ piece index of every programme law (a knot is a time event that resets its sub-s
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -179,11 +179,6 @@ class Problem:
         self.P = P
         M, K, C = _dense(system.M), _dense(system.K), _dense(system.C)
         self.Mfull, self.Kfull, self.Cfull = M, K, C
-        # rigid motions of the full elastic system (null space of K): removed before forming the
-        # elastic energy, so that a drifting drive (x = V t) does not cancel digits in x^T K x
-        lamK, vecK = np.linalg.eigh(0.5 * (K + K.T)) if n else (np.zeros(0), np.zeros((0, 0)))
-        tolK = 1e-12 * (np.max(np.abs(lamK)) if lamK.size else 0.0)
-        self._Krigid = vecK[:, np.abs(lamK) <= tolK]
         self.M0 = M[np.ix_(f, f)]
         self.K = K[np.ix_(f, f)]
         self.C = C[np.ix_(f, f)]
@@ -227,17 +222,36 @@ class Problem:
         x0 = np.zeros(n) if x0 is None else np.asarray(x0, float)
         v0 = np.zeros(n) if v0 is None else np.asarray(v0, float)
         self.q0, self.v0 = x0[f].copy(), v0[f].copy()
-        # a time scale: highest natural frequency of the linear part (for step limits)
+
+    # the time scales and the rigid motions are computed on first use (eigenvalue problems: a problem built
+    # only to evaluate a recorded orbit, e.g. at every point of a frequency-response curve, never needs them)
+    @cached_property
+    def omega_max(self) -> float:
+        """A time scale for step limits: the highest natural frequency of the linear part with every
+        element's stiffness, or the fastest excitation, element or programme-law frequency (rad/s)."""
         try:
             lam = np.linalg.eigvals(np.linalg.solve(self.M0, self.K + sum(
                 el.stiffness() * np.outer(gf, gf) for el, gf in zip(self.elements, self.gf) if el.stiffness() > 0)))
-            self.omega_max = float(np.sqrt(np.max(np.abs(lam)))) if lam.size else 0.0
+            linear = float(np.sqrt(np.max(np.abs(lam)))) if lam.size else 0.0
         except np.linalg.LinAlgError:
-            self.omega_max = 0.0
-        self.omega_max = max([self.omega_max] + [abs(w) for w in oms]
-                             + [el.frequency() for el in self.elements]
-                             + [src.max_frequency() for src in self.sources])
-        self.rate_max = max(self.omega_max, self._fastest_rate())
+            linear = 0.0
+        return max([linear] + [abs(w) for w in self.omegas] + [el.frequency() for el in self.elements]
+                   + [src.max_frequency() for src in self.sources])
+
+    @cached_property
+    def rate_max(self) -> float:
+        """max(omega_max, the fastest rate of the dissipative parts: :meth:`_fastest_rate`) (1/s)."""
+        return max(self.omega_max, self._fastest_rate())
+
+    @cached_property
+    def _Krigid(self) -> np.ndarray:
+        """The rigid motions of the full elastic system (null space of K, columns): removed before forming
+        the elastic energy, so that a drifting drive (x = V t) does not cancel digits in x^T K x."""
+        K = self.Kfull
+        n = K.shape[0]
+        lamK, vecK = np.linalg.eigh(0.5 * (K + K.T)) if n else (np.zeros(0), np.zeros((0, 0)))
+        tolK = 1e-12 * (np.max(np.abs(lamK)) if lamK.size else 0.0)
+        return vecK[:, np.abs(lamK) <= tolK]
 
     def _fastest_rate(self) -> float:
         """The fastest rate (1/s) of the dissipative parts: the dampers (spectral radius of M^-1 C) and each

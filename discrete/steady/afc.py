@@ -347,7 +347,7 @@ def _hb_result(sm: SteadyModel, models, segs, scale, locate: bool) -> AFCResult:
                     omega_ref=cfg.omega_ref, reason=reason, completed=br.completed, stopped_at=br.stopped_at,
                     stop_cause=br.stop, stability_computed=cfg.stability,
                     extra={"steps_rejected": sum(s.br.steps_rejected for s in segs), "_data": cd,
-                           "condensation": models.condensation},
+                           "condensation": models.condensation, "dropped_folds": list(cd.dropped)},
                     states=cd.states, critical=np.array(crit), multipliers=cd.mus, bifurcations=bifs,
                     truncation=np.array(cd.estimate), truncation_tol=cfg.truncation_tol,
                     harmonics=Hs if (cfg.adaptive or Hs.min() != Hs.max()) else None, warnings=list(cd.warnings),
@@ -417,7 +417,7 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
         for i, wf, fr in br.folds:
             located = True
             try:
-                xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc, br.tangent_w[i] > 0)
+                xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc)
             except (SolverError, np.linalg.LinAlgError):
                 xf, wf = _refine_fold(br, i, wf, fr)
                 located = False

@@ -149,6 +149,8 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         return tangent_from(A, prev)
 
     ar = np.arange(n + 1)
+    e_last = np.zeros(n + 1)               # the right-hand side of the tangent's bordered system
+    e_last[n] = 1.0
     Ab = np.empty((n + 1, n + 1))          # the corrector's bordered matrix and right-hand side (reused)
     rb = np.empty(n + 1)
 
@@ -172,10 +174,11 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
             if info != 0:
                 raise np.linalg.LinAlgError("singular bordered Jacobian")
             uu = uu + du
-            if not np.all(np.isfinite(uu)):
+            big = np.abs(du).max()
+            top = np.abs(uu).max()
+            if not (big <= 1e300 and top <= 1e300):         # also NaN
                 raise _StepFailure(f"the corrector diverged near omega = {ww:.6g}")
-            big = np.max(np.abs(du))
-            lim = tol * max(1.0, np.max(np.abs(uu)))
+            lim = tol * max(1.0, top)
             # converged: this step below the tolerance, or (early_stop) quadratic convergence predicting the
             # next one far below it (|du_k| <= 0.1 |du_k-1| and |du_k|^2 / |du_k-1| <= tol / 10)
             if big <= lim or (early_stop and it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
@@ -187,23 +190,23 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         """The tangent from a bordered matrix [Jx Jw; prev] (the corrector's or a fresh one; or its LU and
         0-based pivots), oriented along prev; the sign of det A (= sign det [Jx Jw; t], t . prev > 0) is
         kept in ``sign[0]``: it changes at a branch point, not at a fold."""
-        rhs = np.zeros(n + 1)
-        rhs[n] = 1.0
         if isinstance(A, tuple):
             lu, piv, A = A
         else:
             lu, piv = lu_factor(A, check_finite=False)
         try:
-            t, info = _getrs(lu, piv, rhs)
-            d = np.diag(lu)
-            if info != 0 or not np.all(np.isfinite(t)) or np.any(d == 0):
+            t, info = _getrs(lu, piv, e_last)
+            d = lu.diagonal()
+            tt = t @ t
+            if info != 0 or not 0 < tt < np.inf or not d.all():
                 raise np.linalg.LinAlgError("singular")
             # sign of det A: the signs of U's diagonal and the parity of the row interchanges
-            sign[0] = -1.0 if (np.count_nonzero(d < 0) + np.count_nonzero(piv != ar)) % 2 else 1.0
+            sign[0] = -1.0 if ((d < 0).sum() + (piv != ar).sum()) % 2 else 1.0
+            t /= np.sqrt(tt)
         except (np.linalg.LinAlgError, ValueError):
-            t = np.linalg.lstsq(A, rhs, rcond=None)[0]
+            t = np.linalg.lstsq(A, e_last, rcond=None)[0]
             sign[0] = 0.0
-        t /= np.linalg.norm(t)
+            t /= np.linalg.norm(t)
         return -t if t @ prev < 0 else t
 
     def crossed(wn):
@@ -337,7 +340,7 @@ def locate_fold(fun, x0, w0, t0, xscale, wscale, tol=1e-12, maxit=12):
     c = np.asarray(t0, float)[:n].copy()
     c /= max(np.linalg.norm(c), 1e-300)
     b = c.copy()
-    last = np.inf
+    last = before = np.inf
     for it in range(1, maxit + 1):
         R, Jx, Jw = fun(x, w)
         Js = Jx * xs[None, :]
@@ -373,7 +376,9 @@ def locate_fold(fun, x0, w0, t0, xscale, wscale, tol=1e-12, maxit=12):
         # converged, or quadratic convergence predicting the next step far below the tolerance
         if big <= lim or (it > 1 and big <= 0.1 * last and big * big <= 0.1 * lim * last):
             return x, w, it
-        last = big
+        if big > last > before:            # two growing steps in a row: outside the basin (a fold next to a
+            break                          # grazing), where the caller's bounded search takes over
+        before, last = last, big
     raise SolverError(f"the fold near omega = {w0:.6g} was not located by the extended Newton system")
 
 
@@ -401,13 +406,18 @@ def correct_on_plane(fun, xp, wp, normal, xscale, wscale, tol=1e-10, maxit=40):
     raise SolverError(f"no branch point on the plane near omega = {wp:.6g}")
 
 
-def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
-    """Locate a fold between two branch points a, b precisely.  Local parametrisation: the component
-    k that changes most is fixed to a value s, the rest of x and w solve R = 0 (well posed at a fold);
-    w(s) has an extremum at the fold, found by bounded scalar minimisation (each solve warm-started
-    from the nearest parameter solved before).  Returns (x, w)."""
-    from scipy.optimize import minimize_scalar
-
+def refine_fold(fun, xa, wa, xb, wb, xscale, tol=1e-11):
+    """Locate a fold between two branch points a, b precisely, where the extended Newton system of
+    :func:`locate_fold` has no basin (a fold next to a grazing, where the branch is only C^1).  Local
+    parametrisation: the component k that changes most is fixed to a value s, the rest of x and w solve
+    R = 0 (well posed at a fold); the fold is the extremum of w(s), i.e. the zero of its slope dw/ds,
+    which comes with each solve from the same bordered matrix (``[Jx_keep Jw] [dx; dw] = -Jx[:, k]``).
+    The zero is bracketed by the two points (their slopes differ in sign; else the bracket is widened by
+    half its width on either side, as far as the bounded search of before looked) and found by regula
+    falsi with the Illinois modification, to ``1e-10`` of the parameter's scale (w is then exact to
+    rounding: it is stationary there).  Each solve is warm-started from the nearest parameter solved
+    before.  A maximum and a minimum of w are found alike (the slope's zero needs no side).  Returns
+    (x, w); SolverError if no fold is bracketed or a solve fails."""
     xs = np.asarray(xscale, float)
     xa, xb = np.asarray(xa, float), np.asarray(xb, float)
     k = int(np.argmax(np.abs(xb - xa) / xs))
@@ -418,7 +428,10 @@ def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
     cache = {}
 
     def solve(s):
-        if cache:         # warm start from the nearest solved parameter (the minimiser's points cluster)
+        """(x, w, dw/ds) on the branch at x_k = s."""
+        if s in cache:
+            return cache[s]
+        if cache:         # warm start from the nearest solved parameter
             near = min(cache, key=lambda r: abs(r - s))
             x, w = cache[near][0].copy(), cache[near][1]
         else:
@@ -429,20 +442,47 @@ def refine_fold(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
         for _ in range(30):
             R, Jx, Jw = fun(x, w)
             A = np.hstack([Jx[:, keep], Jw[:, None]])
-            d = np.linalg.solve(A, -R)
-            x[keep] += d[:-1]
-            w += d[-1]
-            if np.max(np.abs(d[:-1] / xs[keep])) <= tol and abs(d[-1]) <= tol * abs(w):
+            d = np.linalg.solve(A, np.stack([-R, -Jx[:, k]], axis=1))
+            x[keep] += d[:-1, 0]
+            w += d[-1, 0]
+            if not (np.all(np.isfinite(d)) and abs(w) < 1e300):
+                raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve diverged")
+            if np.max(np.abs(d[:-1, 0] / xs[keep])) <= tol and abs(d[-1, 0]) <= tol * abs(w):
                 break
-        cache[s] = (x.copy(), w)
-        return w
+        else:
+            raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve did not converge")
+        cache[s] = (x.copy(), w, d[-1, 1])
+        return cache[s]
 
     lo, hi = (sa, sb) if sa < sb else (sb, sa)
-    pad = 0.5 * (hi - lo)
-    sgn = -1.0 if is_max else 1.0
-    r = minimize_scalar(lambda s: sgn * solve(s), bounds=(lo - pad, hi + pad), method="bounded",
-                        options={"xatol": 1e-10 * max(abs(lo), abs(hi), xs[k])})
-    x, w = cache.get(r.x) or (None, solve(r.x))
-    if x is None:
-        x, w = cache[r.x]
-    return x, w
+    xtol = 1e-10 * max(abs(lo), abs(hi), xs[k])
+    ga, gb = solve(lo)[2], solve(hi)[2]
+    if ga * gb > 0:                      # the fold a little outside the two points
+        pad = 0.5 * (hi - lo)
+        lo, hi = lo - pad, hi + pad
+        ga, gb = solve(lo)[2], solve(hi)[2]
+        if ga * gb > 0:
+            raise SolverError(f"no fold between omega = {wa:.6g} and {wb:.6g} (the slope dw/ds keeps its sign)")
+    side = 0
+    for _ in range(200):
+        if hi - lo <= xtol or ga == 0 or gb == 0:
+            break
+        s = (lo * gb - hi * ga) / (gb - ga)
+        if not lo < s < hi:
+            s = 0.5 * (lo + hi)
+        g = solve(s)[2]
+        if g * gb > 0:
+            hi, gb = s, g
+            if side == 1:
+                ga *= 0.5                # Illinois: the retained end's value halved
+            side = 1
+        else:
+            lo, ga = s, g
+            if side == -1:
+                gb *= 0.5
+            side = -1
+        if abs(g) == 0:
+            break
+    s = lo if abs(ga) <= abs(gb) else hi
+    x, w, _ = solve(s)
+    return x.copy(), w

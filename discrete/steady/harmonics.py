@@ -3,6 +3,8 @@
 Galerkin products (cos a cos b = (cos(a - b) + cos(a + b)) / 2, ...)."""
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 
@@ -13,6 +15,25 @@ def basis(H: int, th) -> np.ndarray:
         G[2 * k - 1] = np.cos(k * th)
         G[2 * k] = np.sin(k * th)
     return G
+
+
+@lru_cache(maxsize=32)
+def uniform_basis(H: int, N: int) -> np.ndarray:
+    """:func:`basis` at the N equidistant phases 2 pi n / N (the AFT grid), computed once per (H, N) and
+    shared read-only by every model on that grid (the same values as ``basis``)."""
+    G = basis(H, 2 * np.pi * np.arange(N) / N)
+    G.flags.writeable = False
+    return G
+
+
+@lru_cache(maxsize=32)
+def uniform_dft_table(J: int, N: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos(j th_n), sin(j th_n) (J + 1, N) for j = 0..J at th_n = 2 pi n / N (the compiled kernel's DFT
+    sums), computed once per (J, N) and shared read-only."""
+    arg = np.multiply.outer(np.arange(J + 1), 2 * np.pi * np.arange(N) / N)
+    C, S = np.cos(arg), np.sin(arg)
+    C.flags.writeable = S.flags.writeable = False
+    return C, S
 
 
 def galerkin_maps(H: int):

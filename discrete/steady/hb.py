@@ -25,6 +25,7 @@ from ..linalg.expm import expm_batch
 from ..errors import ModelError, SolverError
 from .harmonics import basis as _basis
 from .harmonics import galerkin_maps as _galerkin_maps
+from .harmonics import uniform_basis
 
 
 class HBModel:
@@ -67,7 +68,7 @@ class HBModel:
         self.N = N
         self.N_fine = N_fine
         th = 2 * np.pi * np.arange(N) / N
-        G = _basis(H, th)
+        G = uniform_basis(H, N)
         D = np.zeros((2 * H + 1, 2 * H + 1))
         for k in range(1, H + 1):
             D[2 * k, 2 * k - 1] = k       # d/dtheta: a_k' = k b_k, b_k' = -k a_k   (Qd = Q @ D)
@@ -533,7 +534,7 @@ class HBModel:
         """(G, D G) sampled at ``points`` equidistant phases (cached)."""
         b = self._bases.get(points)
         if b is None:
-            G = _basis(self.H, 2 * np.pi * np.arange(points) / points)
+            G = uniform_basis(self.H, points)
             b = self._bases[points] = (G, self.D @ G)
         return b
 
@@ -556,13 +557,12 @@ class HBModel:
         return th / Om, Q @ G, Om * (Q @ DG)
 
 
-#: DRIVEFEM_JIT=0: every HB evaluation by numpy (the reference path of the compiled kernel); =always: the
-#: compiled kernel for every model it can evaluate (a long-lived process: numba's load is paid once);
-#: =large: only for models with n (2H+1) >= COMPILED_MIN_UNKNOWNS (the ``drivefem`` command's default:
-#: a one-shot process, see compiled_evaluation); unset or 1: the rule of compiled_evaluation
-#: (0 and always are read when this module is imported, large at every decision: the program sets it at start)
+#: DRIVEFEM_JIT=0: every HB evaluation by numpy (the reference path of the compiled kernel); unset, 1 or
+#: always (a synonym kept for scripts that set it): the compiled kernel for every model it can evaluate (a
+#: Python session: numba's load is paid once); =large: only for models with n (2H+1) >=
+#: COMPILED_MIN_UNKNOWNS (the ``drivefem`` command's default: a one-shot process, see compiled_evaluation)
+#: (0 is read when this module is imported, large at every decision: the program sets it at start)
 COMPILED = os.environ.get("DRIVEFEM_JIT", "1") != "0"
-COMPILED_ALWAYS = os.environ.get("DRIVEFEM_JIT", "") == "always"
 #: the values DRIVEFEM_JIT may take (anything else: a ModelError naming the variable)
 JIT_VALUES = ("0", "1", "large", "always")
 
@@ -572,7 +572,7 @@ def jit_setting() -> str:
     value = os.environ.get("DRIVEFEM_JIT", "1")
     if value not in JIT_VALUES:
         raise ModelError("environment", "DRIVEFEM_JIT", value,
-                         "0 (no compiled kernel), 1 (the default rule), large (the HB kernel for large models only) or always")
+                         "0 (no compiled kernel), 1 or always (the HB kernel wherever it applies: the default) or large (the HB kernel for large models only)")
     return value
 
 
@@ -583,27 +583,24 @@ COMPILED_MIN_UNKNOWNS = 120
 def compiled_evaluation(model: HBModel, force: bool = False):
     """The compiled evaluation of ``model`` (:class:`.hb_kernel.CompiledHB`), or False (numpy then).
 
-    Which models (decided per model and the DRIVEFEM_JIT setting, never by what ran before in the process,
-    so that a curve's numbers do not depend on it): those whose numpy evaluation is expensive -- an exactly integrated
-    piecewise law (its crossings and Toeplitz products: ~200 us to 2 ms per evaluation in numpy, 15-50 us
-    compiled), a rough law evaluated on the dense grid (friction: ~1.2 ms / 0.6 ms), or n (2H+1) >=
-    ``COMPILED_MIN_UNKNOWNS`` (the dense Jacobian's assembly) -- and only when numba is installed, every
-    law is compiled or exactly integrated, and DRIVEFEM_JIT is not 0.  A small smooth model (a one-DOF
-    Duffing oscillator: ~45 us per numpy evaluation) stays with numpy: numba's load would not pay back in a
-    curve of ~500 evaluations.  ``force``: whenever possible.
+    Decided per model and the DRIVEFEM_JIT setting, never by what ran before in the process (a curve's
+    numbers must not depend on it): the kernel whenever numba is installed, every law of the model is
+    compiled or exactly integrated and DRIVEFEM_JIT is not 0 -- except under ``large``, which keeps it to
+    models with n (2H+1) >= ``COMPILED_MIN_UNKNOWNS`` (the dense Jacobian's assembly).  ``force``: whenever
+    possible, whatever the setting.
 
-    The ``drivefem`` program's analysis commands run one analysis per process: they set DRIVEFEM_JIT=large
-    (unless set), which keeps the kernel to the large models.  Measured on a quiet machine: numba and the
-    cached kernel load in ~0.5 s in a fresh process (the first estimate, import 0.09 s + first call 0.17 s,
-    covered fewer of the kernel's functions), while on a one-DOF stop (H = 15, kinks exact) the kernel saves
-    ~35 ms of a curve -- the fresh command took 1.35 s with it against 0.86 s without.  In a Python session
-    the load is paid once and the exact-kink and rough models take the kernel (seed 002's AFC 2.6-3.7x
-    faster).  Both paths agree to ~1e-12 in every evaluation; a curve's derived quantities (a branch point
-    located to its bisection's resolution) may differ by more (docs/steady.md)."""
+    Why: the kernel evaluates a one-DOF Duffing oscillator (H = 7) in ~8 us against ~42 us by numpy, an
+    exactly integrated piecewise law in 15-50 us against ~200 us to 2 ms, a rough law on the dense grid
+    (friction) in ~0.1 ms against ~1.2 ms.  Its cost is numba's load, once per process: ~0.2 s for the
+    cubic-law kernel, ~0.5 s with the piecewise and friction laws (measured on a quiet machine).  A Python
+    session pays it once for all its curves (a Duffing curve: 0.28 s the first time, 16 ms after, against
+    0.08 s and 32 ms by numpy).  The ``drivefem`` program's analysis commands run one analysis per process: they set
+    DRIVEFEM_JIT=large (unless set), where a one-DOF curve never pays the load back (the fresh stop took
+    1.35 s with the kernel, 0.86 s without).  Both paths agree to ~1e-12 in every evaluation; a curve's
+    derived quantities (a branch point located to its bisection's resolution) may differ by more
+    (docs/steady.md)."""
     large = model.nq >= COMPILED_MIN_UNKNOWNS
     if jit_setting() == "large" and not (force or large):
-        return False
-    if not (force or COMPILED_ALWAYS or model._pw or model._rough or large):
         return False
     try:
         from .hb_kernel import JIT, CompiledHB

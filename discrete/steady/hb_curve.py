@@ -306,6 +306,34 @@ def _piecewise_abs_extremes(law, smin, smax):
 
 
 # ------------------------------------------------------------------ folds
+def hermite_fold(xa, wa, ta, xb, wb, tb, xs, wscale):
+    """The fold between two branch points a, b with unit scaled tangents ta, tb (whose omega components
+    differ in sign) on the cubic Hermite curve through them, ``u(r) = h00 ua + h10 L ta + h01 ub + h11 L tb``
+    (L the scaled chord): its omega component is a cubic in r in [0, 1] whose extremum there is the
+    fold, accurate to O(L^4) against the O(L^2) of interpolating linearly in the tangent.  Returns (x, w,
+    the curve's unit tangent there) or None (no extremum inside)."""
+    ua = np.concatenate([np.asarray(xa, float) / xs, [wa / wscale]])
+    ub = np.concatenate([np.asarray(xb, float) / xs, [wb / wscale]])
+    L = float(np.linalg.norm(ub - ua))
+    if not L > 0:
+        return None
+    ma, mb = L * np.asarray(ta, float), L * np.asarray(tb, float)
+    # d/dr of the cubic: (6r^2 - 6r)(ua - ub) + (3r^2 - 4r + 1) ma + (3r^2 - 2r) mb, omega component
+    d = ua[-1] - ub[-1]
+    roots = np.roots([6 * d + 3 * ma[-1] + 3 * mb[-1], -6 * d - 4 * ma[-1] - 2 * mb[-1], ma[-1]])
+    inside = [r.real for r in roots if abs(r.imag) < 1e-12 and 0.0 <= r.real <= 1.0]
+    if len(inside) != 1:
+        return None
+    r = inside[0]
+    u = ((2 * r ** 3 - 3 * r ** 2 + 1) * ua + (r ** 3 - 2 * r ** 2 + r) * ma + (-2 * r ** 3 + 3 * r ** 2) * ub
+         + (r ** 3 - r ** 2) * mb)
+    t = (6 * r ** 2 - 6 * r) * (ua - ub) + (3 * r ** 2 - 4 * r + 1) * ma + (3 * r ** 2 - 2 * r) * mb
+    nt = np.linalg.norm(t)
+    if not nt > 0:
+        return None
+    return u[:-1] * xs, u[-1] * wscale, t / nt
+
+
 def fold_point(hb, br, i, xs, wscale):
     """The fold between branch points i, i+1: Newton on the extended system from the point interpolated
     in the tangent's frequency component; the bounded search of ``refine_fold`` if that fails."""
@@ -315,6 +343,9 @@ def fold_point(hb, br, i, xs, wscale):
     x0 = br.x[i] + fr * (br.x[i + 1] - br.x[i])
     w0 = br.w[i] + fr * (br.w[i + 1] - br.w[i])
     t0 = ta + fr * (tb - ta)
+    start = hermite_fold(br.x[i], br.w[i], ta, br.x[i + 1], br.w[i + 1], tb, xs, wscale)
+    if start is not None:           # the Newton system's basin is small on large steps: start on the cubic
+        x0, w0, t0 = start
     try:
         x, w, _ = locate_fold(fun, x0, w0, t0, xs, wscale)
         # on this stretch of the branch: within the two points' segment, in the scaled variables
@@ -329,7 +360,7 @@ def fold_point(hb, br, i, xs, wscale):
     except (SolverError, np.linalg.LinAlgError):
         pass
     try:
-        x, w = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs, ta[-1] > 0)
+        x, w = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs)
         return x, w, t0, True
     except (SolverError, np.linalg.LinAlgError):
         return x0, w0, t0, False
@@ -359,7 +390,7 @@ def check_fold(sm, models, hb, x, w, t, scale, wscale):
             u = np.concatenate([xp / xs, [w / wscale]]) + sgn * d * tp
             pts.append(correct_on_plane(fun, u[:-1] * xs, u[-1] * wscale, tp, xs, wscale)[:2])
         (xa, wa), (xb, wb) = pts
-        xc, wc = refine_fold(fun, xa, wa, xb, wb, xs, 0.5 * (wa + wb) < w)     # a maximum of omega?
+        xc, wc = refine_fold(fun, xa, wa, xb, wb, xs)
         if abs(wc - w) <= 0.05 * wscale:
             return wc, Hc, xc
     except (SolverError, np.linalg.LinAlgError, ValueError):

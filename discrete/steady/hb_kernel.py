@@ -29,8 +29,8 @@ import numpy as np
 
 from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
 from ..nonsmooth.elements.base import LAW_CUBIC, LAW_TANH_FRICTION
-from .harmonics import basis as _basis
 from .harmonics import galerkin_maps as _galerkin_maps
+from .harmonics import uniform_basis, uniform_dft_table
 
 LAW_PIECEWISE = 3                # an exactly integrated piecewise-affine law
 TWO_PI = 2.0 * np.pi
@@ -377,33 +377,41 @@ def exact_on_samples_batch(code, par, Sd):
 
 
 @njit(cache=True)
+def _rows_times(a, G):
+    """The samples a @ G (G: (m, N)) by rows of G, contiguous in memory; per sample the sum over k runs in
+    the order of a dot product (k = 0, 1, ..), so the values are those of the column-wise loop."""
+    m, N = G.shape
+    out = np.zeros(N)
+    for k in range(m):
+        c = a[k]
+        for n in range(N):
+            out[n] += c * G[k, n]
+    return out
+
+
+@njit(cache=True)
 def _sampled(code, par, Ae, ADe, G, Pm, Ecos, Esin, sa, sb, sda, sdb, omega, Om, nu, jac, dw, Fp, Fw, ss, sv):
     """Coordinates, law, projection, spectra (DFT sums over the N samples, j = 0..2H) and dF/domega of one
     sampled element on a grid (G: the basis there, Pm its projection, Ecos/Esin the DFT table); returns
     whether the law is exact on these samples."""
     m, N = G.shape
     H2 = Ecos.shape[0]
-    S = np.empty(N)
+    S = _rows_times(Ae, G)
+    ADG = _rows_times(ADe, G)
     Sd = np.empty(N)
-    ADG = np.empty(N)
     for n in range(N):
-        x = 0.0
-        y = 0.0
-        for k in range(m):
-            x += Ae[k] * G[k, n]
-            y += ADe[k] * G[k, n]
-        ADG[n] = y
-        S[n] = x + sa[n] + sb[n] / omega
-        Sd[n] = Om * y + sda[n] + omega * sdb[n]
+        S[n] = S[n] + sa[n] + sb[n] / omega
+        Sd[n] = Om * ADG[n] + sda[n] + omega * sdb[n]
     F = np.empty(N)
     dFs = np.empty(N)
     dFv = np.empty(N)
     _law(code, par, S, Sd, F, dFs, dFv)
     for k in range(m):
-        acc = 0.0
-        for n in range(N):
-            acc += F[n] * Pm[n, k]
-        Fp[k] = acc
+        Fp[k] = 0.0
+    for n in range(N):                        # by rows of Pm (contiguous), the sum over n in the same order
+        f = F[n]
+        for k in range(m):
+            Fp[k] += f * Pm[n, k]
     if dw:
         for k in range(m):
             Fw[k] = 0.0
@@ -501,12 +509,9 @@ def evaluate(Q, omega, nu, jac, dw, K, C, M, fP, fmask, Gf, Dm, G, Pm, Ecos, Esi
             Cs = Ae + pws[e, 0]
             Cv = Om * ADe + pws[e, 1] + omega * pws[e, 2]
             Cw = ADe / nu + pws[e, 2]
-            S = np.empty(N)
+            S = _rows_times(Ae, G)
             for q in range(N):
-                x = 0.0
-                for k in range(m):
-                    x += Ae[k] * G[k, q]
-                S[q] = x + exo[0, e, q] + exo[1, e, q] / omega
+                S[q] = S[q] + exo[0, e, q] + exo[1, e, q] / omega
             nb = nbrk[e]
             has_jump[e] = _pw_project(Cs, Cv, Cw, S, brk[e, :nb], pab[e, 0, :nb + 1], pab[e, 1, :nb + 1],
                                       pab[e, 2, :nb + 1], pflags[e, 0], pflags[e, 1], H, H, jac, dw, Fp[e],
@@ -634,12 +639,7 @@ def crossing_phases(A, sa, B, G, offsets):
     chunks = []
     for p in range(P):
         C = A[p] + sa
-        S = np.empty(N)
-        for q in range(N):
-            x = 0.0
-            for k in range(m):
-                x += C[k] * G[k, q]
-            S[q] = x
+        S = _rows_times(C, G)
         th, _, _ = _crossings(C, S, B)
         chunks.append(th)
         offsets[p + 1] = offsets[p] + th.size
@@ -834,11 +834,10 @@ class CompiledHB:
         self.fmask = np.array([bool(np.any(f)) for f in hb._fP])
         self.Gf = np.ascontiguousarray(np.asarray(s.Gf, float).reshape(nel, s.n))
         self.Dm = np.ascontiguousarray(hb.D)
-        self.G = np.ascontiguousarray(hb.G)
+        self.G = np.array(hb.G)
         self.Pm = np.ascontiguousarray(hb.Pm)
-        j = np.arange(2 * H + 1)
-        self.Ecos = np.ascontiguousarray(np.cos(np.multiply.outer(j, hb.theta)))
-        self.Esin = np.ascontiguousarray(np.sin(np.multiply.outer(j, hb.theta)))
+        # writable copies of the shared read-only tables (numba compiles read-only arrays as another type)
+        self.Ecos, self.Esin = (np.array(a) for a in uniform_dft_table(2 * H, N))   # hb.theta: N uniform phases
         g = hb._grid
         self.exo = np.ascontiguousarray(np.stack([g.sa, g.sb, g.sda, g.sdb]).reshape(4, nel, N))
         self.codes = np.asarray(codes, np.int64)
@@ -863,13 +862,11 @@ class CompiledHB:
         self.rough[list(hb._rough)] = True
         Nf = hb.N_fine if hb._rough else 1
         if hb._rough:
-            th = 2 * np.pi * np.arange(Nf) / Nf
-            self.Gfine = np.ascontiguousarray(_basis(H, th))
+            self.Gfine = np.array(uniform_basis(H, Nf))
             W = np.full(m, 2.0 / Nf)
             W[0] = 1.0 / Nf
             self.Pmfine = np.ascontiguousarray(self.Gfine.T * W)
-            self.Ecosf = np.ascontiguousarray(np.cos(np.multiply.outer(j, th)))
-            self.Esinf = np.ascontiguousarray(np.sin(np.multiply.outer(j, th)))
+            self.Ecosf, self.Esinf = (np.array(a) for a in uniform_dft_table(2 * H, Nf))
             gf = hb.grid(Nf)
             self.exof = np.ascontiguousarray(np.stack([gf.sa, gf.sb, gf.sda, gf.sdb]).reshape(4, nel, Nf))
         else:

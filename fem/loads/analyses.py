@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from discrete.loads import LoadMap, amplitude_summary, summary
+from discrete.loads import LoadMap, amplitude_summary, summaries
 
 
 @dataclass
@@ -87,10 +87,12 @@ def derived(axis: str, axis_values, channels, values) -> dict:
     peak-to-peak, dynamic load factor (:func:`discrete.loads.summary`); frequencies (speeds) -- the peak
     amplitude and its frequency (speed); modes -- none."""
     out = {}
+    if axis == "t" and len(channels):
+        rows = summaries(axis_values, np.real(np.asarray(values)).reshape(len(channels), -1),
+                         [c.is_force for c in channels])
+        return {c.name: r for c, r in zip(channels, rows)}
     for k, c in enumerate(channels):
-        if axis == "t":
-            out[c.name] = summary(axis_values, np.real(values[k]), c.is_force)
-        elif axis in ("omega", "speed"):
+        if axis in ("omega", "speed"):
             s = amplitude_summary(values[k])
             k_peak = s.pop("peak_index")
             if k_peak is not None:

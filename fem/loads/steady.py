@@ -20,10 +20,9 @@ def curve_outputs(study, sm, res, points: int = 512) -> dict:
     orbits = _hb_orbits(sm, res, points) if sm.cfg.method == "hb" else _shooting_orbits(sm, res)
     for t, x, v, a, F, f in orbits:
         out = time_outputs(lm, t, x, v, a, F, f)
-        for k, c in enumerate(lm.channels):
-            y = out.values[k]
+        for c in lm.channels:
             s = out.summaries[c.name]
-            cols[c.name]["amplitude"].append(0.5 * float(np.max(y) - np.min(y)))
+            cols[c.name]["amplitude"].append(0.5 * s["peak_to_peak"])
             cols[c.name]["peak"].append(s["peak"])
             cols[c.name]["mean"].append(s["mean"])
             cols[c.name]["dynamic_load_factor"].append(s.get("dynamic_load_factor"))
