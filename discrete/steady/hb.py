@@ -19,13 +19,11 @@ from __future__ import annotations
 import os
 
 import numpy as np
-from scipy.sparse import csr_matrix
 
 from ..linalg.expm import expm_batch
 from ..errors import ModelError, SolverError
 from .harmonics import basis as _basis
-from .harmonics import galerkin_maps as _galerkin_maps
-from .harmonics import uniform_basis
+from .harmonics import grid_tables, uniform_basis
 
 
 class HBModel:
@@ -67,20 +65,14 @@ class HBModel:
             N = N_fine = default_samples(H, smooth)
         self.N = N
         self.N_fine = N_fine
-        th = 2 * np.pi * np.arange(N) / N
-        G = uniform_basis(H, N)
-        D = np.zeros((2 * H + 1, 2 * H + 1))
-        for k in range(1, H + 1):
-            D[2 * k, 2 * k - 1] = k       # d/dtheta: a_k' = k b_k, b_k' = -k a_k   (Qd = Q @ D)
-            D[2 * k - 1, 2 * k] = -k
-        W = np.full(2 * H + 1, 2.0 / N)
-        W[0] = 1.0 / N
+        # the grid's tables (basis, derivatives, projection, Jacobian block maps): shared by every model on
+        # this (H, N) grid, read-only
+        t = grid_tables(H, N)
+        th, G, D = t.theta, t.G, t.D
         self.G, self.D, self.theta = G, D, th
-        self.W = W
-        self.Pm = G.T * W          # (N, 2H+1): R = r @ Pm
-        self.DG = D @ G
-        self.DDG = D @ D @ G
-        self.DD = D @ D
+        self.W = t.W
+        self.Pm = t.Pm             # (N, 2H+1): R = r @ Pm
+        self.DG, self.DDG, self.DD = t.DG, t.DDG, t.DD
         self.m = 2 * H + 1
         self.nq = system.n * self.m
         self._grid = system.grid_parts(th, self.nu)
@@ -90,7 +82,7 @@ class HBModel:
         self._forcing_terms = [(k, None) for k, f in enumerate(self._fP) if np.any(f)]
         self._exo = tuple(bool(np.any(a)) for a in (g.sa, g.sb, g.sda, g.sdb))
         self._gg = np.einsum("ei,ej->eij", system.Gf, system.Gf)
-        self._galerkin_maps = _galerkin_maps(H)
+        self._galerkin_maps = t.galerkin_maps
         # the element blocks of the Jacobian by DOF pair: c_ij = sum_e g_ei g_ej dF_e (pairs i <= j
         # touched by an element; (j, i) gets the same block)
         iu, ju = np.triu_indices(system.n)
@@ -101,9 +93,7 @@ class HBModel:
         self._pair_rows = np.concatenate([iu, ju[low]])
         self._pair_cols = np.concatenate([ju, iu[low]])
         self._pair_src = np.concatenate([np.arange(iu.size), np.flatnonzero(low)])
-        idx, coef = _block_maps(H, self.W, D)
-        cols = np.repeat(np.arange(self.m * self.m)[None, :], 4, axis=0)
-        self._block_map = csr_matrix((coef.ravel(), (cols.ravel(), idx.ravel())), shape=(self.m * self.m, 4 * self.m))
+        self._block_map = t.block_map
         self._bases = {}
         self._lin = (None, None, None, None)
         self._setup_piecewise(laws)
@@ -268,7 +258,7 @@ class HBModel:
 
     def element_blocks(self, cs, cv, Om):
         """``T(cs) + Om T(cv) D^T`` (k, m, m) for sampled dF/ds, dF/ds' sums cs, cv (k, N): one FFT
-        and one sparse map of the DFT sums (four entries per matrix entry, :func:`_block_maps`)."""
+        and one sparse map of the DFT sums (four entries per matrix entry, :func:`.harmonics.block_maps`)."""
         return self.spectral_blocks(self._dft(np.concatenate([cs, cv])), cs.shape[0], Om)
 
     def spectral_blocks(self, F, k, Om):
@@ -572,7 +562,8 @@ def jit_setting() -> str:
     value = os.environ.get("DRIVEFEM_JIT", "1")
     if value not in JIT_VALUES:
         raise ModelError("environment", "DRIVEFEM_JIT", value,
-                         "0 (no compiled kernel), 1 or always (the HB kernel wherever it applies: the default) or large (the HB kernel for large models only)")
+                         "0 (no compiled kernel), 1 or always (the HB kernel wherever it applies: the default) or "
+                         "large (the HB kernel for large models only)")
     return value
 
 
@@ -628,26 +619,6 @@ def _real_series(F, N):
     out[..., 1::2] = 2.0 * F[..., 1:].real / N
     out[..., 2::2] = -2.0 * F[..., 1:].imag / N
     return out
-
-
-def _block_maps(H: int, W, D):
-    """Gather maps of :meth:`HBModel.element_blocks`: with U = [C(cs), S(cs), Om C(cv), Om S(cv)]
-    (the DFT sums of the two functions), ``B.flat = sum_r U[idx[r]] coef[r]`` -- the Galerkin matrix
-    T(cs) of :func:`_galerkin_maps` plus T(cv) D^T, whose column l is column p(l) of T(cv) times
-    D[l, p(l)] (D has one entry per row)."""
-    m = 2 * H + 1
-    i1, i2, c1, c2 = _galerkin_maps(H)
-    half = (0.5 * np.asarray(W))[:, None]
-    # column l of D^T: l = 2k - 1 (cos k) takes column 2k (sin k) times -k; l = 2k takes 2k - 1 times k
-    p = np.zeros(m, int)
-    dl = np.zeros(m)
-    for k in range(1, H + 1):
-        p[2 * k - 1], dl[2 * k - 1] = 2 * k, -k
-        p[2 * k], dl[2 * k] = 2 * k - 1, k
-    off = 2 * m
-    idx = np.stack([i1, i2, off + i1[:, p], off + i2[:, p]]).reshape(4, -1)
-    coef = np.stack([half * c1, half * c2, half * c1[:, p] * dl[None, :], half * c2[:, p] * dl[None, :]]).reshape(4, -1)
-    return idx, coef
 
 
 def floquet_hb(model: HBModel, X, omega, steps: int | None = None):

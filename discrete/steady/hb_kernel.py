@@ -833,11 +833,12 @@ class CompiledHB:
         self.fP = np.ascontiguousarray(np.stack(hb._fP))
         self.fmask = np.array([bool(np.any(f)) for f in hb._fP])
         self.Gf = np.ascontiguousarray(np.asarray(s.Gf, float).reshape(nel, s.n))
-        self.Dm = np.ascontiguousarray(hb.D)
-        self.G = np.array(hb.G)
-        self.Pm = np.ascontiguousarray(hb.Pm)
-        # writable copies of the shared read-only tables (numba compiles read-only arrays as another type)
-        self.Ecos, self.Esin = (np.array(a) for a in uniform_dft_table(2 * H, N))   # hb.theta: N uniform phases
+        # writable copies of the model's shared read-only grid tables (numba compiles read-only arrays as
+        # another type)
+        self.Dm = np.array(hb.D, order="C")
+        self.G = np.array(hb.G, order="C")
+        self.Pm = np.array(hb.Pm, order="C")
+        self.Ecos, self.Esin = (np.array(a, order="C") for a in uniform_dft_table(2 * H, N))   # N uniform phases
         g = hb._grid
         self.exo = np.ascontiguousarray(np.stack([g.sa, g.sb, g.sda, g.sdb]).reshape(4, nel, N))
         self.codes = np.asarray(codes, np.int64)
@@ -862,11 +863,11 @@ class CompiledHB:
         self.rough[list(hb._rough)] = True
         Nf = hb.N_fine if hb._rough else 1
         if hb._rough:
-            self.Gfine = np.array(uniform_basis(H, Nf))
+            self.Gfine = np.array(uniform_basis(H, Nf), order="C")
             W = np.full(m, 2.0 / Nf)
             W[0] = 1.0 / Nf
             self.Pmfine = np.ascontiguousarray(self.Gfine.T * W)
-            self.Ecosf, self.Esinf = (np.array(a) for a in uniform_dft_table(2 * H, Nf))
+            self.Ecosf, self.Esinf = (np.array(a, order="C") for a in uniform_dft_table(2 * H, Nf))
             gf = hb.grid(Nf)
             self.exof = np.ascontiguousarray(np.stack([gf.sa, gf.sb, gf.sda, gf.sdb]).reshape(4, nel, Nf))
         else:
@@ -882,7 +883,7 @@ class CompiledHB:
         i1, i2, c1, c2 = _galerkin_maps(H)
         self.i1, self.i2 = np.asarray(i1, np.int64), np.asarray(i2, np.int64)
         self.c1, self.c2 = np.asarray(c1, float), np.asarray(c2, float)
-        self.W = np.ascontiguousarray(hb.W)
+        self.W = np.array(hb.W, order="C")
 
     def _linear(self, s):
         """K, C, M of the system (repacked when a caller replaces them, as hb.backbone does with C)."""

@@ -44,16 +44,12 @@ def estimates(hb, Xs, omegas, direction) -> np.ndarray:
         return out
     J = 2 * H
     k = np.arange(H + 1, J + 1)
-    f = np.empty((P, H, n), complex)
-    Kb = np.empty((P, n, n))
-    Cb = np.empty((P, n, n))
     Q = np.asarray(Xs, float).reshape(P, n, m)
-    hi_all, ms, mv = _high_harmonics(hb, Q, np.asarray(omegas, float), J)
-    for i in range(P):
-        hi = hi_all[i]                                             # (nel, 2H): harmonics H+1..2H
-        f[i] = (hi[:, 0::2] - 1j * hi[:, 1::2]).T @ s.Gf           # (H, n) complex amplitudes
-        Kb[i] = s.K - (s.Gf.T * ms[i]) @ s.Gf
-        Cb[i] = s.C - (s.Gf.T * mv[i]) @ s.Gf
+    hi_all, ms, mv = _high_harmonics(hb, Q, np.asarray(omegas, float), J)     # (P, nel, 2H): H+1..2H
+    Gf = np.asarray(s.Gf, float)
+    f = (hi_all[:, :, 0::2] - 1j * hi_all[:, :, 1::2]).transpose(0, 2, 1) @ Gf   # (P, H, n) amplitudes
+    Kb = s.K - (Gf.T * ms[:, None, :]) @ Gf                        # (P, n, n): the period-averaged K, C
+    Cb = s.C - (Gf.T * mv[:, None, :]) @ Gf
     W = np.asarray(omegas, float) / hb.nu
     kW = np.multiply.outer(W, k)                                   # (P, H)
     if n == 1:
