@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ModelError, SolverError
 from . import bifurcation as bif
 from . import measures
-from .continuation import arclength, refine_fold
+from .continuation import arclength, refine_fold_bounded
 from .hb import HBModel, time_guess
 from .shooting import ShootingModel, section_phase
 from .system import PeriodicSystem
@@ -417,7 +417,8 @@ def _shooting_curve(sm: SteadyModel, progress=None) -> AFCResult:
         for i, wf, fr in br.folds:
             located = True
             try:
-                xf, wf = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc)
+                xf, wf = refine_fold_bounded(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], sc,
+                                             br.tangent_w[i] > 0)
             except (SolverError, np.linalg.LinAlgError):
                 xf, wf = _refine_fold(br, i, wf, fr)
                 located = False

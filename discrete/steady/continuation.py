@@ -406,32 +406,24 @@ def correct_on_plane(fun, xp, wp, normal, xscale, wscale, tol=1e-10, maxit=40):
     raise SolverError(f"no branch point on the plane near omega = {wp:.6g}")
 
 
-def refine_fold(fun, xa, wa, xb, wb, xscale, tol=1e-11):
-    """Locate a fold between two branch points a, b precisely, where the extended Newton system of
-    :func:`locate_fold` has no basin (a fold next to a grazing, where the branch is only C^1).  Local
-    parametrisation: the component k that changes most is fixed to a value s, the rest of x and w solve
-    R = 0 (well posed at a fold); the fold is the extremum of w(s), i.e. the zero of its slope dw/ds,
-    which comes with each solve from the same bordered matrix (``[Jx_keep Jw] [dx; dw] = -Jx[:, k]``).
-    The zero is bracketed by the two points (their slopes differ in sign; else the bracket is widened by
-    half its width on either side, as far as the bounded search of before looked) and found by regula
-    falsi with the Illinois modification, to ``1e-10`` of the parameter's scale (w is then exact to
-    rounding: it is stationary there).  Each solve is warm-started from the nearest parameter solved
-    before.  A maximum and a minimum of w are found alike (the slope's zero needs no side).  Returns
-    (x, w); SolverError if no fold is bracketed or a solve fails."""
-    xs = np.asarray(xscale, float)
+def _fold_chart(fun, xa, wa, xb, wb, xs, tol, slope: bool, strict: bool):
+    """The local parametrisation of a branch across a fold between its points a and b: the component k of
+    x that changes most is fixed to a value s, the rest of x and w solve R = 0 (well posed at a fold), each
+    solve warm-started from the nearest parameter solved before: ``solve(s)``
+    gives (x, w, dw/ds) -- the slope (``slope``) from the same bordered matrix, ``[Jx_keep Jw] [dx; dw] =
+    -Jx[:, k]``, else None; ``strict``: a solve that does not converge raises SolverError (else its last
+    iterate is taken).  Returns (solve, s_a, s_b, k)."""
     xa, xb = np.asarray(xa, float), np.asarray(xb, float)
     k = int(np.argmax(np.abs(xb - xa) / xs))
-    n = xa.size
-    keep = [j for j in range(n) if j != k]
+    keep = [j for j in range(xa.size) if j != k]
     sa, sb = xa[k], xb[k]
     span = sb - sa
     cache = {}
 
     def solve(s):
-        """(x, w, dw/ds) on the branch at x_k = s."""
         if s in cache:
             return cache[s]
-        if cache:         # warm start from the nearest solved parameter
+        if cache:
             near = min(cache, key=lambda r: abs(r - s))
             x, w = cache[near][0].copy(), cache[near][1]
         else:
@@ -439,21 +431,42 @@ def refine_fold(fun, xa, wa, xb, wb, xscale, tol=1e-11):
             x = xa + f * (xb - xa)
             w = wa + f * (wb - wa)
         x[k] = s
+        g = None
         for _ in range(30):
             R, Jx, Jw = fun(x, w)
             A = np.hstack([Jx[:, keep], Jw[:, None]])
-            d = np.linalg.solve(A, np.stack([-R, -Jx[:, k]], axis=1))
-            x[keep] += d[:-1, 0]
-            w += d[-1, 0]
-            if not (np.all(np.isfinite(d)) and abs(w) < 1e300):
+            if slope:
+                d2 = np.linalg.solve(A, np.stack([-R, -Jx[:, k]], axis=1))
+                d, g = d2[:, 0], d2[-1, 1]
+            else:
+                d = np.linalg.solve(A, -R)
+            x[keep] += d[:-1]
+            w += d[-1]
+            if strict and not (np.all(np.isfinite(d)) and abs(w) < 1e300):
                 raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve diverged")
-            if np.max(np.abs(d[:-1, 0] / xs[keep])) <= tol and abs(d[-1, 0]) <= tol * abs(w):
+            if np.max(np.abs(d[:-1] / xs[keep])) <= tol and abs(d[-1]) <= tol * abs(w):
                 break
         else:
-            raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve did not converge")
-        cache[s] = (x.copy(), w, d[-1, 1])
+            if strict:
+                raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve did not converge")
+        cache[s] = (x.copy(), w, g)
         return cache[s]
 
+    return solve, sa, sb, k
+
+
+def refine_fold(fun, xa, wa, xb, wb, xscale, tol=1e-11):
+    """Locate a fold between two branch points a, b precisely, where the extended Newton system of
+    :func:`locate_fold` has no basin (a fold next to a grazing, where the branch is only C^1), for a
+    residual with an exact Jacobian (harmonic balance).  On the local parametrisation of
+    :func:`_fold_chart` the fold is the extremum of w(s), i.e. the zero of its slope dw/ds, which comes
+    with each solve.  The zero is bracketed by the two points (their slopes differ in sign; else the
+    bracket is widened by half its width on either side) and found by regula falsi with the Illinois
+    modification to 1e-10 of the parameter's scale (w is stationary there).  A maximum and a minimum of w
+    are found alike.  No scipy.optimize (its import is ~0.07 s of a ``drivefem forced`` run).  Returns
+    (x, w); SolverError if no fold is bracketed or a solve fails."""
+    xs = np.asarray(xscale, float)
+    solve, sa, sb, k = _fold_chart(fun, xa, wa, xb, wb, xs, tol, slope=True, strict=True)
     lo, hi = (sa, sb) if sa < sb else (sb, sa)
     xtol = 1e-10 * max(abs(lo), abs(hi), xs[k])
     ga, gb = solve(lo)[2], solve(hi)[2]
@@ -481,8 +494,26 @@ def refine_fold(fun, xa, wa, xb, wb, xscale, tol=1e-11):
             if side == -1:
                 gb *= 0.5
             side = -1
-        if abs(g) == 0:
+        if g == 0:
             break
-    s = lo if abs(ga) <= abs(gb) else hi
-    x, w, _ = solve(s)
+    x, w, _ = solve(lo if abs(ga) <= abs(gb) else hi)
     return x.copy(), w
+
+
+def refine_fold_bounded(fun, xa, wa, xb, wb, xscale, is_max: bool, tol=1e-11):
+    """:func:`refine_fold` for a residual whose Jacobian is a finite difference (shooting: the period map
+    differentiated numerically), where the slope dw/ds is only as accurate as that difference: the
+    extremum of the values w(s) themselves by a bounded scalar search (Brent), over the two points'
+    parameters widened by half their width on either side.  ``is_max``: w has a maximum there.  Returns
+    (x, w)."""
+    from scipy.optimize import minimize_scalar
+
+    xs = np.asarray(xscale, float)
+    solve, sa, sb, k = _fold_chart(fun, xa, wa, xb, wb, xs, tol, slope=False, strict=False)
+    lo, hi = (sa, sb) if sa < sb else (sb, sa)
+    pad = 0.5 * (hi - lo)
+    sgn = -1.0 if is_max else 1.0
+    r = minimize_scalar(lambda s: sgn * solve(s)[1], bounds=(lo - pad, hi + pad), method="bounded",
+                        options={"xatol": 1e-10 * max(abs(lo), abs(hi), xs[k])})
+    x, w, _ = solve(r.x)
+    return x, w

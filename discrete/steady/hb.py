@@ -57,6 +57,9 @@ class HBModel:
         # rough laws are evaluated on the dense grid (N_fine) at the evaluations where their samples on the
         # HB grid (N) are not exact (Element.sampled_exactly: a saturated clutch is a polynomial law)
         smooth = min((2 if law is not None else el.smoothness for el, law in zip(system.elements, laws)), default=2)
+        #: whether a kinked or discontinuous law is sampled (not integrated exactly): the branch's w(s) then
+        #: has kinks of its own (it zig-zags), and a fold is the extremum of its values (hb_curve.fold_point)
+        self.samples_kinks = smooth < 2
         if samples:
             N = N_fine = int(samples)
         elif kinks == "exact":

@@ -35,7 +35,7 @@ from ..errors import SolverError
 from . import bifurcation as bif
 from . import measures
 from .condense import CondensedHB, arclength_scale, condensation_rule
-from .continuation import arclength, correct_on_plane, locate_fold, refine_fold
+from .continuation import arclength, correct_on_plane, locate_fold, refine_fold, refine_fold_bounded
 from .hb import HBModel, floquet_hb, floquet_hb_batch
 from .truncation import estimates as truncation_estimates
 from .truncation import response_direction
@@ -360,10 +360,21 @@ def fold_point(hb, br, i, xs, wscale):
     except (SolverError, np.linalg.LinAlgError):
         pass
     try:
-        x, w = refine_fold(fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs)
+        x, w = _refine(hb, fun, br.x[i], br.w[i], br.x[i + 1], br.w[i + 1], xs, ta[-1] > 0)
         return x, w, t0, True
     except (SolverError, np.linalg.LinAlgError):
         return x0, w0, t0, False
+
+
+def _refine(hb, fun, xa, wa, xb, wb, xs, is_max):
+    """The fold between two branch points where the extended Newton system failed: the zero of the slope
+    dw/ds (:func:`.continuation.refine_fold`: the Jacobian is exact), or where the model samples a kink
+    (its branch zig-zags, w(s) has kinks and its slope jumps) the extremum of the values w(s) (bounded
+    search, :func:`.continuation.refine_fold_bounded`; ``is_max``: w has a maximum there)."""
+    model = hb.inner if isinstance(hb, CondensedHB) else hb
+    if model.samples_kinks:
+        return refine_fold_bounded(fun, xa, wa, xb, wb, xs, is_max)
+    return refine_fold(fun, xa, wa, xb, wb, xs)
 
 
 def check_fold(sm, models, hb, x, w, t, scale, wscale):
@@ -390,7 +401,7 @@ def check_fold(sm, models, hb, x, w, t, scale, wscale):
             u = np.concatenate([xp / xs, [w / wscale]]) + sgn * d * tp
             pts.append(correct_on_plane(fun, u[:-1] * xs, u[-1] * wscale, tp, xs, wscale)[:2])
         (xa, wa), (xb, wb) = pts
-        xc, wc = refine_fold(fun, xa, wa, xb, wb, xs)
+        xc, wc = _refine(hc, fun, xa, wa, xb, wb, xs, 0.5 * (wa + wb) < w)     # a maximum of omega?
         if abs(wc - w) <= 0.05 * wscale:
             return wc, Hc, xc
     except (SolverError, np.linalg.LinAlgError, ValueError):
