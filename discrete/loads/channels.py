@@ -175,12 +175,32 @@ def time_mean(t: np.ndarray, y: np.ndarray) -> float:
 
 
 def time_means(t: np.ndarray, Y: np.ndarray) -> np.ndarray:
-    """:func:`time_mean` of every row of Y (rows: histories over the instants t)."""
+    """:func:`time_mean` along the last axis of Y (histories over the instants t: one row (N,) for all, or
+    one row per history broadcasting against Y's leading axes, e.g. t (P, N) for Y (k, P, N))."""
     t = np.asarray(t, dtype=float)
-    span = float(t[-1] - t[0]) if t.size else 0.0
-    if span <= 0:
-        return np.mean(Y, axis=1) if Y.shape[1] else np.zeros(Y.shape[0])
-    return np.sum(0.5 * (Y[:, 1:] + Y[:, :-1]) * np.diff(t), axis=1) / span
+    if Y.shape[-1] == 0:
+        return np.zeros(Y.shape[:-1])
+    span = t[..., -1] - t[..., 0]
+    trap = np.sum(0.5 * (Y[..., 1:] + Y[..., :-1]) * np.diff(t, axis=-1), axis=-1)
+    flat = span <= 0                      # no time covered: the plain mean of the samples
+    if np.all(flat):
+        return np.mean(Y, axis=-1)
+    if not np.any(flat):
+        return trap / span
+    return np.where(flat, np.mean(Y, axis=-1), trap / np.where(flat, 1.0, span))
+
+
+def history_quantities(t: np.ndarray, Y: np.ndarray) -> dict:
+    """{peak (max |y|), max, min, mean, rms} along the last axis of Y (t as in :func:`time_means`), arrays
+    over Y's leading axes."""
+    Y = np.asarray(Y, dtype=float)
+    return {"peak": np.max(np.abs(Y), axis=-1), "max": np.max(Y, axis=-1), "min": np.min(Y, axis=-1),
+            "mean": time_means(t, Y), "rms": np.sqrt(np.maximum(time_means(t, Y * Y), 0.0))}
+
+
+def load_factor(peak: float, mean: float):
+    """The dynamic load factor peak / |mean| of a force (None where the mean is zero to round-off)."""
+    return peak / abs(mean) if abs(mean) > 1e-12 * max(peak, 1e-300) else None
 
 
 def summaries(t: np.ndarray, Y: np.ndarray, force_like) -> list[dict]:
@@ -189,17 +209,13 @@ def summaries(t: np.ndarray, Y: np.ndarray, force_like) -> list[dict]:
     Y = np.asarray(Y, dtype=float)
     if Y.shape[1] == 0:
         return [summary(t, y, f) for y, f in zip(Y, force_like)]
-    peak = np.max(np.abs(Y), axis=1)
-    hi, lo = np.max(Y, axis=1), np.min(Y, axis=1)
-    mean = time_means(t, Y)
-    rms = np.sqrt(np.maximum(time_means(t, Y * Y), 0.0))
+    q = history_quantities(t, Y)
     out = []
     for k, f in enumerate(force_like):
-        d = {"peak": float(peak[k]), "max": float(hi[k]), "min": float(lo[k]), "mean": float(mean[k]),
-             "rms": float(rms[k]), "peak_to_peak": float(hi[k] - lo[k])}
+        d = {"peak": float(q["peak"][k]), "max": float(q["max"][k]), "min": float(q["min"][k]),
+             "mean": float(q["mean"][k]), "rms": float(q["rms"][k]), "peak_to_peak": float(q["max"][k] - q["min"][k])}
         if f:
-            d["dynamic_load_factor"] = (d["peak"] / abs(d["mean"]) if abs(d["mean"]) > 1e-12 * max(d["peak"], 1e-300)
-                                        else None)
+            d["dynamic_load_factor"] = load_factor(d["peak"], d["mean"])
         out.append(d)
     return out
 

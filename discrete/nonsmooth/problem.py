@@ -186,7 +186,8 @@ class Problem:
         self.Cr = np.zeros_like(self.M0) if reactive is None else _dense(reactive)[np.ix_(f, f)]
         Pc = P[c]
         # coupling of free DOFs to driver motion (moved to the right-hand side)
-        self.B = K[np.ix_(f, c)] @ Pc + C[np.ix_(f, c)] @ Pc @ E + M[np.ix_(f, c)] @ Pc @ E @ E
+        self._couplings = (K[np.ix_(f, c)] @ Pc, C[np.ix_(f, c)] @ Pc, M[np.ix_(f, c)] @ Pc)
+        self.B = self._couplings[0] + self._couplings[1] @ E + self._couplings[2] @ E @ E
         Fx = np.zeros((self.nf, ne))
         for F in self.forces:
             Fx += np.outer(np.asarray(F.g, float)[f], row(F))
@@ -252,6 +253,28 @@ class Problem:
         lamK, vecK = np.linalg.eigh(0.5 * (K + K.T)) if n else (np.zeros(0), np.zeros((0, 0)))
         tolK = 1e-12 * (np.max(np.abs(lamK)) if lamK.size else 0.0)
         return vecK[:, np.abs(lamK) <= tolK]
+
+    def retuned(self, omega: float, drivers: dict, forces: list) -> "Problem":
+        """This problem with its harmonic drivers and forces replaced by ``drivers`` and ``forces``, the same
+        ones at the frequency ``omega`` (what :meth:`ProblemSpec.problem` gives at another frequency), without
+        rebuilding what does not depend on it: only the exogenous generator E, the driver coupling B and the
+        elements' exogenous gradients are recomputed (the elements are copied).  The caller guarantees that
+        every harmonic source of this problem was at one frequency and is now at ``omega`` (both non-zero),
+        so the exogenous basis keeps its layout."""
+        new = object.__new__(Problem)
+        new.__dict__.update({k: v for k, v in self.__dict__.items() if k not in ("omega_max", "rate_max")})
+        new.drivers = {**self.drivers, **drivers}          # the constrained DOFs' default laws kept
+        new.forces = list(forces)
+        new.elements = [replace(el) for el in self.elements]
+        new.omegas = [float(omega)]
+        E = self.E.copy()
+        E[2, 3], E[3, 2] = omega, -omega
+        new.E = E
+        K_, C_, M_ = self._couplings
+        new.B = K_ + C_ @ E + M_ @ E @ E
+        new.gve = [ge @ E for ge in self.ge]
+        new.gae = [ge @ E @ E for ge in self.ge]
+        return new
 
     def _fastest_rate(self) -> float:
         """The fastest rate (1/s) of the dissipative parts: the dampers (spectral radius of M^-1 C) and each
@@ -548,9 +571,31 @@ class ProblemSpec:
 
     def problem(self, omega: float | None = None) -> Problem:
         """The Problem, every harmonic driver and force at ``omega`` (None: as given)."""
+        drivers, forces = self._sources_at(omega)
+        return Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
+                       mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)
+
+    def problems(self, omegas) -> list[Problem]:
+        """:meth:`problem` at each frequency of ``omegas`` (the points of a frequency-response curve): the
+        first one built, the others retuned from it (:meth:`Problem.retuned`: the same values, ~10x less
+        work) where its harmonic sources share one non-zero frequency."""
+        out, base = [], None
+        for w in omegas:
+            drivers, forces = self._sources_at(w)
+            if base is not None and w != 0:
+                out.append(base.retuned(float(w), drivers, forces))
+                continue
+            p = Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
+                        mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)
+            if len(p.omegas) == 1 and p.omegas[0] == float(w) and not p.sources:
+                base = p
+            out.append(p)
+        return out
+
+    def _sources_at(self, omega):
+        """The drivers and forces with every harmonic one at ``omega`` (None: as given)."""
         drivers, forces = self.drivers, self.forces
         if omega is not None:
             drivers = {j: replace(d, omega=float(omega)) if d.amplitude != 0 else d for j, d in drivers.items()}
             forces = [replace(f, omega=float(omega)) if f.amplitude != 0 else f for f in forces]
-        return Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
-                       mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)
+        return drivers, forces

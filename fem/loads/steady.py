@@ -6,26 +6,32 @@ from __future__ import annotations
 
 import numpy as np
 
-from .analyses import time_outputs
+from discrete.loads.channels import history_quantities, load_factor
+
 from .drive import selected
 
 
 def curve_outputs(study, sm, res, points: int = 512) -> dict:
     """{output name: description, ``amplitude``, ``peak``, ``mean``, ``dynamic_load_factor`` (forces: peak
     over |mean|), one value per point of the curve ``res`` (:class:`discrete.steady.AFCResult`) of the
-    steady model ``sm``}."""
+    steady model ``sm``}.  The orbits of HB share one sampling: their channels are evaluated in one call
+    and reduced over each orbit at once (:func:`discrete.loads.channels.history_quantities`)."""
     loads = study.time_loads
     lm = selected(study, loads)
     cols = {c.name: {"amplitude": [], "peak": [], "mean": [], "dynamic_load_factor": []} for c in lm.channels}
-    orbits = _hb_orbits(sm, res, points) if sm.cfg.method == "hb" else _shooting_orbits(sm, res)
-    for t, x, v, a, F, f in orbits:
-        out = time_outputs(lm, t, x, v, a, F, f)
-        for c in lm.channels:
-            s = out.summaries[c.name]
-            cols[c.name]["amplitude"].append(0.5 * s["peak_to_peak"])
-            cols[c.name]["peak"].append(s["peak"])
-            cols[c.name]["mean"].append(s["mean"])
-            cols[c.name]["dynamic_load_factor"].append(s.get("dynamic_load_factor"))
+    orbits = list(_hb_orbits(sm, res, points) if sm.cfg.method == "hb" else _shooting_orbits(sm, res))
+    same = len({np.size(o[0]) for o in orbits}) == 1
+    for group in ([orbits] if same else [[o] for o in orbits]) if lm.channels and orbits else []:
+        T = np.stack([np.asarray(o[0], float) for o in group])                  # (orbits, samples)
+        Y = lm.values(*(_columns(group, j, T.shape[1]) for j in range(1, 6)), T.ravel())
+        q = history_quantities(T, np.asarray(np.real_if_close(Y), float).reshape(len(lm.channels), *T.shape))
+        for k, c in enumerate(lm.channels):
+            col = cols[c.name]
+            col["amplitude"] += (0.5 * (q["max"][k] - q["min"][k])).tolist()
+            col["peak"] += q["peak"][k].tolist()
+            col["mean"] += q["mean"][k].tolist()
+            col["dynamic_load_factor"] += [load_factor(p, m) if c.is_force else None
+                                           for p, m in zip(q["peak"][k].tolist(), q["mean"][k].tolist())]
     out = {}
     for c in lm.channels:
         amp = cols[c.name]["amplitude"]
@@ -35,13 +41,20 @@ def curve_outputs(study, sm, res, points: int = 512) -> dict:
     return out
 
 
+def _columns(group, j: int, samples: int):
+    """Part j of every orbit of ``group`` side by side (rows: coordinates, columns: the orbits' samples in
+    turn), or None where the orbits have none."""
+    if any(o[j] is None for o in group):
+        return None
+    return np.concatenate([np.asarray(o[j]).reshape(-1, samples) for o in group], axis=1)
+
+
 def _hb_orbits(sm, res, points: int):
     from discrete.steady.hb import HBModel
 
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
-    for X, w in zip(res.states, res.omega):
-        p = sm.factory(float(w))
+    for X, w, p in zip(res.states, res.omega, sm.spec.problems([float(w) for w in res.omega])):
         t, q, v = hb.evaluate(np.asarray(X), float(w), points=max(points, hb.N))
         E = p.basis_many(t)
         x, xd = p.full_state(q, v, E)
