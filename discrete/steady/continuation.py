@@ -153,6 +153,7 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
     e_last[n] = 1.0
     Ab = np.empty((n + 1, n + 1))          # the corrector's bordered matrix and right-hand side (reused)
     rb = np.empty(n + 1)
+    Abx, Abw, rbx = Ab[:n, :n], Ab[:n, n], rb[:n]
 
     def corrector(up, tau):
         """Newton on R = 0 and tau . (u - up) = 0, one LAPACK call (gesv) per step; returns (u, iterations,
@@ -165,10 +166,10 @@ def arclength(fun, x0, w0, w_stop, *, xscale, wscale, ds=0.02, ds_min=1e-5, ds_m
         for it in range(1, maxit + 1):
             xx, ww = uu[:n] * xs, uu[n] * wscale
             R, Jx, Jw = fun(xx, ww)
-            np.multiply(Jx, xs, out=Ab[:n, :n])
-            np.multiply(Jw, wscale, out=Ab[:n, n])
+            np.multiply(Jx, xs, out=Abx)
+            np.multiply(Jw, wscale, out=Abw)
             Ab[n] = tau
-            np.negative(R, out=rb[:n])
+            np.negative(R, out=rbx)
             rb[n] = -(tau @ (uu - up))
             lu, piv, du, info = _gesv(Ab, rb)
             if info != 0:

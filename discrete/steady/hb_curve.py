@@ -145,8 +145,15 @@ def full_tangent(solver, x, w, t, xs, scale, wscale):
 
 
 def residual_function(hb: HBModel):
-    def fun(x, w, need_w=True):
-        return hb.evaluate_residual(x, w, jac=True, dw=need_w)
+    """``fun(x, w, need_w=True) -> (R, J, dR/dw)`` of the continuation (the compiled evaluation called
+    directly when the model has one: two Python frames less per evaluation)."""
+    ck = hb._kernel() if isinstance(hb, HBModel) else False
+    if ck:
+        def fun(x, w, need_w=True):
+            return ck(x, w, True, need_w)
+    else:
+        def fun(x, w, need_w=True):
+            return hb.evaluate_residual(x, w, jac=True, dw=need_w)
     return fun
 
 

@@ -829,6 +829,7 @@ class CompiledHB:
         nel = len(s.elements)
         self.hb = hb
         self.nu = float(hb.nu)
+        self._args = None                      # packed at the first call (_pack)
         self._linear(s)
         self.fP = np.ascontiguousarray(np.stack(hb._fP))
         self.fmask = np.array([bool(np.any(f)) for f in hb._fP])
@@ -917,18 +918,22 @@ class CompiledHB:
         return constant_coefficients(Q, np.ascontiguousarray(omegas, float), self.nu, self.Gf, self.G, self.exo,
                                      self.codes, self.par, self.rough)
 
+    def _pack(self):
+        """The arrays of :func:`evaluate` after Q, omega, nu, jac, dw, in its order (packed once per model and
+        again when K, C or M are replaced: one tuple instead of 38 attribute look-ups per call)."""
+        self._args = (self.K, self.C, self.M, self.fP, self.fmask, self.Gf, self.Dm, self.G, self.Pm, self.Ecos,
+                      self.Esin, self.exo, self.codes, self.par, self.pws, self.brk, self.nbrk, self.pab, self.pflags,
+                      self.rough, self.hb._go_fine, self.Gfine, self.Pmfine, self.Ecosf, self.Esinf, self.exof,
+                      self.pw_w, self.prow, self.pcol, self.psrc, self.i1, self.i2, self.c1, self.c2, self.W)
+
     def __call__(self, X, omega, jac=True, dw=False):
         """(R, J or None, dR/domega or None), as :meth:`HBModel.evaluate_residual`."""
         hb = self.hb
         s = hb.s
-        if s.K is not self._src[0] or s.C is not self._src[1] or s.M is not self._src[2]:
+        if s.K is not self._src[0] or s.C is not self._src[1] or s.M is not self._src[2] or self._args is None:
             self._linear(s)
-        Q = np.ascontiguousarray(np.asarray(X, float).reshape(hb.s.n, hb.m))
-        R, J, Rw, fine = evaluate(Q, float(omega), self.nu, bool(jac), bool(dw), self.K, self.C, self.M, self.fP,
-                                  self.fmask, self.Gf, self.Dm, self.G, self.Pm, self.Ecos, self.Esin, self.exo,
-                                  self.codes, self.par, self.pws, self.brk, self.nbrk, self.pab, self.pflags,
-                                  self.rough, hb._go_fine, self.Gfine, self.Pmfine, self.Ecosf, self.Esinf,
-                                  self.exof, self.pw_w, self.prow, self.pcol, self.psrc, self.i1, self.i2, self.c1,
-                                  self.c2, self.W)
+            self._pack()
+        Q = np.ascontiguousarray(np.asarray(X, float).reshape(s.n, hb.m))
+        R, J, Rw, fine = evaluate(Q, float(omega), self.nu, bool(jac), bool(dw), *self._args)
         hb.fine_evaluations += fine
         return R, (J if jac else None), (Rw if dw else None)
