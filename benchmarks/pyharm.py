@@ -20,7 +20,10 @@ round):
   worker process of its own environment, warmed up once per problem; drivefem ``Study.parse(doc).forced()``
   here) -- target >= 10x;
 * fresh process: a new interpreter per curve, everything included (pyHarm: ``Maestro(...).operate()`` in a
-  runner script; drivefem: ``drivefem forced FILE.toml --json``) -- target >= 3x.
+  runner script; drivefem: ``drivefem forced FILE.toml --json``) -- target >= 3x.  Both sides run as installed
+  software does: one untimed fresh run first (files in the OS cache), Python's bytecode cache written
+  (PYTHONDONTWRITEBYTECODE dropped from both environments: set, it recompiled every edited drivefem module
+  in every run, ~25 ms).
 
 Curves, compared in the same run: each timed curve against exact shooting (drivefem's event-driven period
 map, Newton from that tool's own harmonic orbit) at 9 points spread along it, |h1 - exact| / peak; and
@@ -238,6 +241,7 @@ class PyHarm:
         self.python, self.workdir = python, workdir
         env = dict(os.environ, **ONE_THREAD)
         env.pop("PYTHONPATH", None)
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
         self.env = env
         self.proc = subprocess.Popen([python, str(self.script), "worker"], stdin=subprocess.PIPE,
                                      stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True, env=env,
@@ -273,6 +277,7 @@ class PyHarm:
 
 def drivefem_fresh(model: Path, workdir: Path) -> float:
     env = dict(os.environ, **ONE_THREAD, PYTHONPATH=str(ROOT))
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     t = time.perf_counter()
     out = subprocess.run([sys.executable, "-m", "fem.app.cli", "forced", str(model), "--json",
                           str(workdir / "afc.json")], capture_output=True, text=True, env=env, cwd=ROOT, timeout=900)
@@ -332,6 +337,8 @@ def _problem(name, p, ph: PyHarm, work: Path, args) -> list:
                 times["drivefem"].append(wall)
                 cpu["drivefem"].append(c)
     fresh = {"pyharm": [], "drivefem": []}
+    ph.fresh(p)                                 # untimed: both sides' files in the OS cache, bytecode written
+    drivefem_fresh(model, work)
     for k in range(args.fresh):
         for side in (("pyharm", "drivefem") if k % 2 == 0 else ("drivefem", "pyharm")):
             fresh[side].append(ph.fresh(p) if side == "pyharm" else drivefem_fresh(model, work))
