@@ -25,12 +25,14 @@ with the numpy path on every kind of law (tests/test_hb_kernel.py).
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..jit import JIT, njit  # noqa: F401  (JIT: whether numba compiles this module)
 from ..nonsmooth.elements.base import LAW_CUBIC, LAW_TANH_FRICTION
 from .harmonics import galerkin_maps as _galerkin_maps
-from .harmonics import uniform_basis, uniform_dft_table
+from .harmonics import grid_tables, uniform_dft_table
 
 LAW_PIECEWISE = 3                # an exactly integrated piecewise-affine law
 TWO_PI = 2.0 * np.pi
@@ -819,6 +821,17 @@ def constant_coefficients(Q, omegas, nu, Gf, G, exo, codes, par, rough):
 
 
 # ------------------------------------------------------------------ packing
+@lru_cache(maxsize=32)
+def _kernel_tables(H: int, N: int) -> tuple:
+    """(D, G, Pm, cos table, sin table, W) of the grid of N phases for H harmonics
+    (:func:`.harmonics.grid_tables`, :func:`.harmonics.uniform_dft_table` with j = 0..2H) as the compiled
+    functions take them: writable C-ordered copies (numba types a read-only array apart, and compiles
+    again for it), made once per (H, N) and shared by the models on that grid -- nothing writes them."""
+    t = grid_tables(H, N)
+    C, S = uniform_dft_table(2 * H, N)
+    return tuple(np.array(a, order="C") for a in (t.D, t.G, t.Pm, C, S, t.W))
+
+
 class CompiledHB:
     """An :class:`~discrete.steady.hb.HBModel`'s data packed for :func:`evaluate`; :meth:`build` returns
     None when an element's law is neither compiled (``Element.compiled_law``) nor exactly integrated."""
@@ -834,12 +847,7 @@ class CompiledHB:
         self.fP = np.ascontiguousarray(np.stack(hb._fP))
         self.fmask = np.array([bool(np.any(f)) for f in hb._fP])
         self.Gf = np.ascontiguousarray(np.asarray(s.Gf, float).reshape(nel, s.n))
-        # writable copies of the model's shared read-only grid tables (numba compiles read-only arrays as
-        # another type)
-        self.Dm = np.array(hb.D, order="C")
-        self.G = np.array(hb.G, order="C")
-        self.Pm = np.array(hb.Pm, order="C")
-        self.Ecos, self.Esin = (np.array(a, order="C") for a in uniform_dft_table(2 * H, N))   # N uniform phases
+        self.Dm, self.G, self.Pm, self.Ecos, self.Esin, self.W = _kernel_tables(H, N)   # hb's grid: N phases
         g = hb._grid
         self.exo = np.ascontiguousarray(np.stack([g.sa, g.sb, g.sda, g.sdb]).reshape(4, nel, N))
         self.codes = np.asarray(codes, np.int64)
@@ -864,11 +872,7 @@ class CompiledHB:
         self.rough[list(hb._rough)] = True
         Nf = hb.N_fine if hb._rough else 1
         if hb._rough:
-            self.Gfine = np.array(uniform_basis(H, Nf), order="C")
-            W = np.full(m, 2.0 / Nf)
-            W[0] = 1.0 / Nf
-            self.Pmfine = np.ascontiguousarray(self.Gfine.T * W)
-            self.Ecosf, self.Esinf = (np.array(a, order="C") for a in uniform_dft_table(2 * H, Nf))
+            _, self.Gfine, self.Pmfine, self.Ecosf, self.Esinf, _ = _kernel_tables(H, Nf)
             gf = hb.grid(Nf)
             self.exof = np.ascontiguousarray(np.stack([gf.sa, gf.sb, gf.sda, gf.sdb]).reshape(4, nel, Nf))
         else:
@@ -884,7 +888,6 @@ class CompiledHB:
         i1, i2, c1, c2 = _galerkin_maps(H)
         self.i1, self.i2 = np.asarray(i1, np.int64), np.asarray(i2, np.int64)
         self.c1, self.c2 = np.asarray(c1, float), np.asarray(c2, float)
-        self.W = np.array(hb.W, order="C")
 
     def _linear(self, s):
         """K, C, M of the system (repacked when a caller replaces them, as hb.backbone does with C)."""

@@ -79,7 +79,8 @@ def _high_harmonics(hb, Q, omegas, J):
     g = hb._grid
     Om = (omegas / hb.nu)[:, None, None]
     S = A @ hb.G + g.sa + g.sb / omegas[:, None, None]
-    Sd = Om * (A @ hb.DG) + g.sda + omegas[:, None, None] * g.sdb
+    # the velocities only for the sampled laws (the exactly integrated ones take their series)
+    Sd = Om * (A @ hb.DG) + g.sda + omegas[:, None, None] * g.sdb if hb._sampled else None
     redo = set()
     for e in hb._sampled:
         el = s.elements[e]
