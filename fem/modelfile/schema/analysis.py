@@ -1,7 +1,6 @@
 """Tables of the linear analyses: ``[analysis]`` (modal, forced or parametric), ``[damping]``, ``[[load]]``,
 ``[[base_motion]]`` and ``[[response]]``.  ``[damping]`` has one meaning in every kind of file:
 the global damping added to the model's own dampers and dissipation coefficients (design.md §3)."""
-from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal, Union
 

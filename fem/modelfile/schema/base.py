@@ -19,7 +19,6 @@ The unit is the one of the plain number (SI, or rpm/deg/Hz for keys named so); i
 catalogue :data:`fem.modelfile.units.DIMENSIONS`.  A quantity string is converted to it once, when
 the file is read (:mod:`fem.modelfile.units`).
 """
-from __future__ import annotations
 
 import types
 from functools import partial

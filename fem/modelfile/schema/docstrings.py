@@ -6,7 +6,6 @@ tables, though only an error message, the JSON Schema and the reference page rea
 :func:`attach` does the same extraction (same rule: an annotated field followed by a string; inherited
 fields keep the description of the class that declares them) by parsing each schema module once, and
 rebuilds the tables' validators so that the JSON Schema carries them -- at the first use."""
-from __future__ import annotations
 
 import ast
 import inspect

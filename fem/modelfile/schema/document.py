@@ -11,7 +11,6 @@ Kinds (decided once, from the tables present, by :func:`detect_kind`):
 * ``rotor``: a spinning shaft line on bearings (``[rotor]``) with complex modes, Campbell diagram
   and unbalance response.
 """
-from __future__ import annotations
 
 from typing import Annotated
 

@@ -1,6 +1,5 @@
 """``[drive]``: a drive of regular structure (textbook ch. 10) -- a main shaft with n identical
 1-DOF mechanisms -- and its sub-tables (see docs/drives.md)."""
-from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 

@@ -2,7 +2,6 @@
 ``[[one_sided]]``, ``[[gap]]``, ``[[impact]]``, ``[[cubic_spring]]``, ``[[force]]`` and (hybrid)
 ``[[distributed_friction]]``.  Each element acts on a coordinate s given by the keys of
 :class:`Coordinate` (see docs/discrete.md and docs/hybrid.md for the laws)."""
-from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal
 

@@ -1,6 +1,5 @@
 """Tables of the finite-element part of a model file: ``[material]``, ``[model]``, ``[[segment]]``
 (with its ``section``), ``[[support]]`` and ``[[point]]`` (design.md §4)."""
-from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 

@@ -1,6 +1,5 @@
 """Tables of the lumped part of a model file: ``[[body]]``, ``[[driver]]``, ``[[spring]]``,
 ``[[damper]]`` and ``[[gear]]`` -- the same tables in lumped and hybrid files (textbook §4.4-4.9)."""
-from __future__ import annotations
 
 import math
 from typing import Annotated, ClassVar, Literal, Union

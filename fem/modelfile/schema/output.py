@@ -2,7 +2,6 @@
 writes its default outputs: the deflection and force of every spring, damper, gear pair and nonsmooth
 element, the reaction of every driver, support and bearing, and the section loads of FE shafts and
 rotors at their key stations."""
-from __future__ import annotations
 
 from typing import Annotated, Literal
 

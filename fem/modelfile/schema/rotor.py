@@ -8,7 +8,6 @@ what involves positions along the shaft (discs, bearings on nodes) and the beari
 Speeds are given in rad/s (``speed``, ``speeds``) or in rev/min (``speed_rpm``, ``speeds_rpm``),
 exactly one of the two; a list of speeds may also be a grid ``{ start, stop, points }``.
 """
-from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal
 

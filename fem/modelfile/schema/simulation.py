@@ -1,6 +1,5 @@
 """Tables of the time simulation: ``[simulation]``, ``[constants]``, ``[initial]`` and ``[reduction]``.
 One ``[simulation]`` table for every kind of file; ``method`` picks the integrator."""
-from __future__ import annotations
 
 from typing import Annotated, Literal
 

@@ -1,5 +1,4 @@
 """``[steady]`` (nonlinear amplitude-frequency curves) and ``[sweep]`` (parameter maps on Dask)."""
-from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 

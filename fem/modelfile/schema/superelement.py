@@ -1,6 +1,5 @@
 """``[[superelement]]`` (hybrid models): a linear super-element read from matrix files (fem/superelement.py)
 joined to the shaft; its other DOFs are addressed as ``body = "NAME:DOF"``."""
-from __future__ import annotations
 
 from typing import Annotated
 

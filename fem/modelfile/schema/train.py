@@ -8,7 +8,6 @@ speed; the default command), ``[campbell]``, ``[forced]`` (linear response over 
 Angles are given in degrees (``*_deg``), speeds in rad/s or rev/min (one of the two), lengths in m.
 An end of a connection (``between``) is a body name, "ground" (couplings) or a shaft node
 ``{ shaft = "name", x = .. }``."""
-from __future__ import annotations
 
 from typing import Annotated, Literal, Union
 
