@@ -147,10 +147,36 @@ def test_the_fold_next_to_a_grazing_needs_no_scipy_optimize(tmp_path):
 
     model = tmp_path / "stop.toml"
     model.write_text(STOP_TOML)
-    code = ("import sys; from fem.app import cli; sys.argv = ['drivefem', 'forced', sys.argv[1], '--json', "
-            "sys.argv[2]]; rc = cli.main(); print('OPT', 'scipy.optimize' in sys.modules, rc)")
+    code = ("import atexit, sys; from fem.app import cli; sys.argv = ['drivefem', 'forced', sys.argv[1], '--json', "
+            "sys.argv[2]]; atexit.register(lambda: print('OPT', 'scipy.optimize' in sys.modules)); cli.main()")
     out = subprocess.run([sys.executable, "-c", code, str(model), str(tmp_path / "o.json")], capture_output=True,
                          text=True)
-    assert out.stdout.strip().splitlines()[-1] == "OPT False 0", out.stdout[-2000:] + out.stderr[-2000:]
+    assert out.stdout.strip().splitlines()[-1] == "OPT False" and out.returncode == 0, (out.stdout[-2000:]
+                                                                                        + out.stderr[-2000:])
     folds = sorted(f["omega"] for f in json.loads((tmp_path / "o.json").read_text())["folds"])
     assert abs(folds[0] - 1.0418038632940971) <= 1e-5 * 1.04 and abs(folds[1] - 1.2283215565531747) <= 1e-5 * 1.23
+
+
+def test_a_one_shot_command_ends_its_process_with_its_code_and_its_output(tmp_path):
+    """Run as the program, a one-shot command ends inside main() (cli._end_process): the exit code is the
+    command's, everything printed reaches a pipe, the files it wrote are complete, the exit handlers run;
+    a long-lived command (validate) and main(argv) return normally."""
+    import json
+
+    model = tmp_path / "stop.toml"
+    model.write_text(STOP_TOML)
+    code = ("import atexit, sys; from fem.app import cli; sys.argv = ['drivefem'] + sys.argv[1:]; "
+            "atexit.register(lambda: print('HANDLER RAN')); cli.main(); print('NOT REACHED')")
+    out = subprocess.run([sys.executable, "-c", code, "forced", str(model), "--json", str(tmp_path / "o.json"),
+                          "--csv", str(tmp_path / "o.csv")], capture_output=True, text=True)
+    assert out.returncode == 0 and "NOT REACHED" not in out.stdout, out.stderr[-2000:]
+    lines = out.stdout.strip().splitlines()
+    assert lines[-1] == "HANDLER RAN" and any("wrote" in line for line in lines), out.stdout[-2000:]
+    assert json.loads((tmp_path / "o.json").read_text())["n_points"] > 10
+    assert (tmp_path / "o.csv").read_text().count("\n") > 10
+    bad = subprocess.run([sys.executable, "-c", code, "forced", str(tmp_path / "missing.toml")], capture_output=True,
+                         text=True)
+    assert bad.returncode == 2 and "drivefem: error" in bad.stderr and "NOT REACHED" not in bad.stdout
+    from fem.app import cli
+
+    assert cli.main(["schema"]) == 0

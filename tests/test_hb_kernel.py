@@ -171,14 +171,15 @@ def test_the_program_sets_the_one_shot_policy_only_as_a_program(monkeypatch, tmp
     monkeypatch.delenv("DRIVEFEM_JIT", raising=False)
     assert cli.main(["schema"]) == 0
     assert "DRIVEFEM_JIT" not in os.environ
-    code = ("import os, sys; from fem.app import cli; sys.argv = ['drivefem', 'schema']; rc = cli.main(); "
-            "print('JIT', os.environ.get('DRIVEFEM_JIT'), rc)")
+    # a one-shot command ends its process inside main() (cli._end_process runs the exit handlers first)
+    code = ("import atexit, os, sys; from fem.app import cli; sys.argv = ['drivefem', 'schema']; "
+            "atexit.register(lambda: print('JIT', os.environ.get('DRIVEFEM_JIT'), 0)); cli.main()")
     env = {k: v for k, v in os.environ.items() if k != "DRIVEFEM_JIT"}
     for given, expected in ((None, "large"), ("always", "always"), ("0", "0")):
         if given is not None:
             env["DRIVEFEM_JIT"] = given
         out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=tmp_path)
-        assert out.stdout.strip().splitlines()[-1] == f"JIT {expected} 0", out.stderr[-2000:]
+        assert out.stdout.strip().splitlines()[-1] == f"JIT {expected} 0" and out.returncode == 0, out.stderr[-2000:]
     # a long-lived command (drivefem validate: ~170 cases in one process) keeps the session's rule
     env.pop("DRIVEFEM_JIT")
     code = code.replace("['drivefem', 'schema']", "['drivefem', 'validate', '--case', 'no-such-case']")
