@@ -35,7 +35,7 @@ pyHarm lives in its own virtualenv (not a drivefem dependency): ``bash benchmark
 it at ``$PYHARM_ENV`` (default /work/pyharm-env); ``--pyharm PYTHON`` points elsewhere.  Its first run
 compiles its numba kernels (about 25 s for the cubic problem, 2 min for the DLFT friction; cached after).
 
-    python benchmarks/pyharm.py [--repeat 3] [--fresh 3] [--only duffing stop ...]
+    python benchmarks/pyharm.py [--repeat 7] [--fresh 5] [--only duffing stop ...]
 """
 from __future__ import annotations
 
@@ -293,8 +293,8 @@ def _stats(xs):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--repeat", type=int, default=3, help="in-process rounds (each tool once per round)")
-    ap.add_argument("--fresh", type=int, default=3, help="fresh-process rounds")
+    ap.add_argument("--repeat", type=int, default=7, help="in-process rounds (each tool once per round)")
+    ap.add_argument("--fresh", type=int, default=5, help="fresh-process rounds")
     ap.add_argument("--only", nargs="*", choices=sorted(PROBLEMS), default=None)
     ap.add_argument("--pyharm", default=str(Path(os.environ.get("PYHARM_ENV", "/work/pyharm-env")) / "bin" / "python"))
     args = ap.parse_args(argv)
