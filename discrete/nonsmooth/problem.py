@@ -260,9 +260,12 @@ class Problem:
         rebuilding what does not depend on it: only the exogenous generator E, the driver coupling B and the
         elements' exogenous gradients are recomputed (the elements are copied).  The caller guarantees that
         every harmonic source of this problem was at one frequency and is now at ``omega`` (both non-zero),
-        so the exogenous basis keeps its layout."""
+        so the exogenous basis keeps its layout.  The frequency-free arrays (matrices, gradients, P, Fx,
+        initial state) are shared with this problem, not copied: they are read, never written; the cached
+        properties (time scales) are computed again."""
         new = object.__new__(Problem)
-        new.__dict__.update({k: v for k, v in self.__dict__.items() if k not in ("omega_max", "rate_max")})
+        cached = {k for k, v in vars(Problem).items() if isinstance(v, cached_property)} - {"_Krigid"}
+        new.__dict__.update({k: v for k, v in self.__dict__.items() if k not in cached})
         new.drivers = {**self.drivers, **drivers}          # the constrained DOFs' default laws kept
         new.forces = list(forces)
         new.elements = [replace(el) for el in self.elements]
@@ -571,7 +574,9 @@ class ProblemSpec:
 
     def problem(self, omega: float | None = None) -> Problem:
         """The Problem, every harmonic driver and force at ``omega`` (None: as given)."""
-        drivers, forces = self._sources_at(omega)
+        return self._build(*self._sources_at(omega))
+
+    def _build(self, drivers, forces) -> Problem:
         return Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
                        mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)
 
@@ -585,8 +590,7 @@ class ProblemSpec:
             if base is not None and w != 0:
                 out.append(base.retuned(float(w), drivers, forces))
                 continue
-            p = Problem(self.system, [replace(el) for el in self.elements], drivers=drivers, forces=forces,
-                        mass_rate=self.mass_rate, reactive=self.reactive, x0=self.x0, v0=self.v0)
+            p = self._build(drivers, forces)
             if len(p.omegas) == 1 and p.omegas[0] == float(w) and not p.sources:
                 base = p
             out.append(p)

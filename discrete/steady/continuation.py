@@ -443,7 +443,7 @@ def _fold_chart(fun, xa, wa, xb, wb, xs, tol, slope: bool, strict: bool):
                 d = np.linalg.solve(A, -R)
             x[keep] += d[:-1]
             w += d[-1]
-            if strict and not (np.all(np.isfinite(d)) and abs(w) < 1e300):
+            if strict and not (np.all(np.isfinite(d)) and abs(w) < 1e300 and (g is None or np.isfinite(g))):
                 raise SolverError(f"the fold near omega = {wa:.6g} was not refined: a solve diverged")
             if np.max(np.abs(d[:-1] / xs[keep])) <= tol and abs(d[-1]) <= tol * abs(w):
                 break

@@ -343,7 +343,7 @@ def hermite_fold(xa, wa, ta, xb, wb, tb, xs, wscale):
 
 def fold_point(hb, br, i, xs, wscale):
     """The fold between branch points i, i+1: Newton on the extended system from the point interpolated
-    in the tangent's frequency component; the bounded search of ``refine_fold`` if that fails."""
+    on the cubic Hermite curve of the two points (:func:`hermite_fold`); :func:`_refine` if that fails."""
     fun = residual_function(hb)
     ta, tb = br.tangents[i], br.tangents[i + 1]
     fr = ta[-1] / (ta[-1] - tb[-1]) if ta[-1] != tb[-1] else 0.5
@@ -399,8 +399,9 @@ def check_fold(sm, models, hb, x, w, t, scale, wscale):
             return wc, Hc, xc
     except (SolverError, np.linalg.LinAlgError):
         pass
-    # the Newton system needs a differentiable Jacobian (sampled kinks are not): two points on either side
-    # of the fold with H' harmonics, on planes across the tangent, and the bounded search between them
+    # the Newton system needs a differentiable Jacobian (sampled kinks are not) and a basin (not next to a
+    # grazing): two points on either side of the fold with H' harmonics, on planes across the tangent, and
+    # the refinement between them (_refine)
     try:
         d = max(1e-3, 1e-4 * wscale / max(abs(w), 1e-300))
         pts = []

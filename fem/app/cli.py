@@ -125,19 +125,27 @@ def main(argv: list[str] | None = None) -> int:
 
 def _end_process(code: int) -> None:
     """End the process with ``code`` now: the exit handlers run (atexit, weakref finalizers) and the
-    standard streams are flushed, as at a normal exit -- every file the command wrote is closed already
-    (context managers) -- but the interpreter's teardown is skipped: freeing every object of numpy, scipy,
-    pydantic and the model took ~65 ms after a ``drivefem forced`` of a one-DOF file (0.48 s in all;
-    measured on a quiet machine)."""
+    standard streams are flushed before and after them, as at a normal exit -- every file the command
+    wrote is closed already (context managers) -- but the interpreter's teardown is skipped: freeing every
+    object of numpy, scipy, pydantic and the model took ~65 ms after a ``drivefem forced`` of a one-DOF
+    file (0.48 s in all; measured on a quiet machine).  Output that cannot be written (a full disk, an I/O
+    error; not a closed pipe) turns a success into exit 120, as Python's own exit does."""
     import atexit
 
-    for stream in (sys.stdout, sys.stderr):
-        try:
-            stream.flush()
-        except (OSError, ValueError):       # a closed or broken pipe: nothing more to say there
-            pass
+    def flush():
+        nonlocal code
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except BrokenPipeError:          # the reader went away (| head): nothing more to say there
+                pass
+            except (OSError, ValueError):    # output lost: not a success
+                code = code or 120
+
     try:
+        flush()
         atexit._run_exitfuncs()
+        flush()
     finally:
         os._exit(code)
 

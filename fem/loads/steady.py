@@ -15,13 +15,14 @@ def curve_outputs(study, sm, res, points: int = 512) -> dict:
     """{output name: description, ``amplitude``, ``peak``, ``mean``, ``dynamic_load_factor`` (forces: peak
     over |mean|), one value per point of the curve ``res`` (:class:`discrete.steady.AFCResult`) of the
     steady model ``sm``}.  The orbits of HB share one sampling: their channels are evaluated in one call
-    and reduced over each orbit at once (:func:`discrete.loads.channels.history_quantities`)."""
+    per chunk of :data:`CHUNK` orbits and reduced over each orbit at once
+    (:func:`discrete.loads.channels.history_quantities`); shooting orbits one by one."""
     loads = study.time_loads
     lm = selected(study, loads)
     cols = {c.name: {"amplitude": [], "peak": [], "mean": [], "dynamic_load_factor": []} for c in lm.channels}
-    orbits = list(_hb_orbits(sm, res, points) if sm.cfg.method == "hb" else _shooting_orbits(sm, res))
-    same = len({np.size(o[0]) for o in orbits}) == 1
-    for group in ([orbits] if same else [[o] for o in orbits]) if lm.channels and orbits else []:
+    orbits = _hb_orbits(sm, res, points) if sm.cfg.method == "hb" else _shooting_orbits(sm, res)
+    groups = _chunks(orbits, CHUNK if sm.cfg.method == "hb" else 1)
+    for group in groups if lm.channels else ():
         T = np.stack([np.asarray(o[0], float) for o in group])                  # (orbits, samples)
         Y = lm.values(*(_columns(group, j, T.shape[1]) for j in range(1, 6)), T.ravel())
         q = history_quantities(T, np.asarray(np.real_if_close(Y), float).reshape(len(lm.channels), *T.shape))
@@ -41,6 +42,23 @@ def curve_outputs(study, sm, res, points: int = 512) -> dict:
     return out
 
 
+#: HB orbits evaluated together (they share one sampling): the memory of a chunk is CHUNK x (states +
+#: loads) x samples, whatever the number of points of the curve
+CHUNK = 64
+
+
+def _chunks(orbits, size: int):
+    """Lists of up to ``size`` consecutive orbits with one sample count (a new list where it changes)."""
+    chunk = []
+    for orbit in orbits:
+        if chunk and (len(chunk) == size or np.size(orbit[0]) != np.size(chunk[0][0])):
+            yield chunk
+            chunk = []
+        chunk.append(orbit)
+    if chunk:
+        yield chunk
+
+
 def _columns(group, j: int, samples: int):
     """Part j of every orbit of ``group`` side by side (rows: coordinates, columns: the orbits' samples in
     turn), or None where the orbits have none."""
@@ -54,7 +72,9 @@ def _hb_orbits(sm, res, points: int):
 
     cfg = sm.cfg
     hb = HBModel(sm.system, harmonics=cfg.harmonics, nu=cfg.subharmonic, samples=cfg.samples)
-    for X, w, p in zip(res.states, res.omega, sm.spec.problems([float(w) for w in res.omega])):
+    ws = [float(w) for w in res.omega]
+    problems = sm.spec.problems(ws) if hasattr(sm.spec, "problems") else map(sm.factory, ws)
+    for X, w, p in zip(res.states, res.omega, problems):
         t, q, v = hb.evaluate(np.asarray(X), float(w), points=max(points, hb.N))
         E = p.basis_many(t)
         x, xd = p.full_state(q, v, E)
