@@ -171,3 +171,19 @@ def test_two_concurrent_resumes_split_the_work(tmp_path):
     pids = {r["run"]["pid"] for r in points(tmp_path / "a.json").values()}
     assert pids == {a.pid, b.pid}
     assert results(tmp_path / "a.json") == results(tmp_path / "b.json") == first
+
+
+def test_a_claim_removes_the_temporary_file_a_killed_run_left(tmp_path):
+    """A run killed between writing a point's temporary file and renaming it leaves NNNNNN.PID.tmp; the run
+    that claims the point next (its only writer from then on) removes it, and keeps its own."""
+    from fem.app.sweep_store import SweepStore
+
+    store = SweepStore(tmp_path / "s", {"m": 1}, "simulate", 1, [{"a": 1.0}, {"a": 2.0}])
+    store.open("--out")
+    dead = store.dir / "000001.4194304.tmp"
+    other = store.dir / "000000.4194304.tmp"
+    dead.write_text("{")
+    other.write_text("{")
+    assert store.claim(1)
+    assert not dead.exists() and other.exists()             # only the claimed point's leftovers
+    store.release_all()

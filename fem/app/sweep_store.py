@@ -91,12 +91,15 @@ class SweepStore:
         return self.dir / f"{i:06d}.json"
 
     def _atomic(self, path: Path, data) -> None:
-        tmp = path.with_name(f"{path.stem}.{self.pid}.tmp")
+        tmp = self._tmp_path(path)
         with open(tmp, "w") as fh:
             json.dump(data, fh, indent=1, sort_keys=True)
             fh.flush()
             os.fsync(fh.fileno())
         os.replace(tmp, path)
+
+    def _tmp_path(self, path: Path) -> Path:
+        return path.with_name(f"{path.stem}.{self.pid}.tmp")
 
     def read(self, i: int) -> tuple[dict | None, str | None]:
         """(record, None) for a trusted point file, else (None, reason): missing | unreadable | incomplete |
@@ -172,6 +175,12 @@ class SweepStore:
             with os.fdopen(fd, "w") as fh:
                 json.dump({"host": HOST, "pid": self.pid, "time": time.time()}, fh)
             self.mine.add(i)
+            # a temporary file of this point left by a run killed between writing and renaming it: the claim
+            # makes this run the point's only writer, so any other run's temporary file of it is dead
+            own = self._tmp_path(self.path(i))
+            for old in own.parent.glob(f"{self.path(i).stem}.*.tmp"):
+                if old != own:
+                    old.unlink(missing_ok=True)
             if self.finished_elsewhere(i):   # another run stored it after this run's scan
                 self.release(i)
                 return False
