@@ -183,6 +183,14 @@ def detect(mus, bp_signs, fold_index) -> list:
 
 
 # ------------------------------------------------------------------ location
+def hermite_point(ua, ub, ta, tb, length, sig):
+    """The point at the fraction ``sig`` in [0, 1] of the cubic Hermite curve between the branch points ua
+    and ub (scaled variables) with unit tangents ta, tb and chord ``length``."""
+    s2, s3 = sig * sig, sig * sig * sig
+    return ((2 * s3 - 3 * s2 + 1) * ua + (s3 - 2 * s2 + sig) * length * np.asarray(ta)
+            + (-2 * s3 + 3 * s2) * ub + (s3 - s2) * length * np.asarray(tb))
+
+
 def locate_on_segment(psi, fun, xa, wa, xb, wb, xscale, wscale, fa=None, fb=None, tol=1e-8, maxit=60,
                       ta=None, tb=None):
     """The root of ``psi(x, w)`` between the branch points a and b: Illinois on the fraction sigma of the
@@ -205,9 +213,7 @@ def locate_on_segment(psi, fun, xa, wa, xb, wb, xscale, wscale, fa=None, fb=None
         if sig == 1.0:
             return np.asarray(xb, float), wb
         if ta is not None and tb is not None:
-            s2, s3 = sig * sig, sig * sig * sig
-            u = ((2 * s3 - 3 * s2 + 1) * ua + (s3 - 2 * s2 + sig) * nd * np.asarray(ta)
-                 + (-2 * s3 + 3 * s2) * ub + (s3 - s2) * nd * np.asarray(tb))
+            u = hermite_point(ua, ub, ta, tb, nd, sig)
         else:
             u = ua + sig * (ub - ua)
         x, w, _ = correct_on_plane(fun, u[:-1] * xs, u[-1] * wscale, d, xs, wscale, tol=1e-8)

@@ -315,8 +315,8 @@ def _piecewise_abs_extremes(law, smin, smax):
 # ------------------------------------------------------------------ folds
 def hermite_fold(xa, wa, ta, xb, wb, tb, xs, wscale):
     """The fold between two branch points a, b with unit scaled tangents ta, tb (whose omega components
-    differ in sign) on the cubic Hermite curve through them, ``u(r) = h00 ua + h10 L ta + h01 ub + h11 L tb``
-    (L the scaled chord): its omega component is a cubic in r in [0, 1] whose extremum there is the
+    differ in sign) on the cubic Hermite curve through them (:func:`.bifurcation.hermite_point`; L the
+    scaled chord): its omega component is a cubic in r in [0, 1] whose extremum there is the
     fold, accurate to O(L^4) against the O(L^2) of interpolating linearly in the tangent.  Returns (x, w,
     the curve's unit tangent there) or None (no extremum inside)."""
     ua = np.concatenate([np.asarray(xa, float) / xs, [wa / wscale]])
@@ -332,8 +332,7 @@ def hermite_fold(xa, wa, ta, xb, wb, tb, xs, wscale):
     if len(inside) != 1:
         return None
     r = inside[0]
-    u = ((2 * r ** 3 - 3 * r ** 2 + 1) * ua + (r ** 3 - 2 * r ** 2 + r) * ma + (-2 * r ** 3 + 3 * r ** 2) * ub
-         + (r ** 3 - r ** 2) * mb)
+    u = bif.hermite_point(ua, ub, ta, tb, L, r)
     t = (6 * r ** 2 - 6 * r) * (ua - ub) + (3 * r ** 2 - 4 * r + 1) * ma + (3 * r ** 2 - 2 * r) * mb
     nt = np.linalg.norm(t)
     if not nt > 0:

@@ -58,6 +58,23 @@ def _series(C, th, deriv):
 
 
 @njit(cache=True)
+def _coefficient(X, row, d):
+    """X[row, d] of a real function's complex coefficients, for negative d as conj(X[row, -d])."""
+    return X[row, d] if d >= 0 else np.conj(X[row, -d])
+
+
+@njit(cache=True)
+def _put_real(out, j, z):
+    """Harmonic j of the real series [c0, a1, b1, ..] from its complex coefficient z (the period mean for
+    j = 0, else a_j = 2 Re z, b_j = -2 Im z)."""
+    if j == 0:
+        out[0] = z.real
+    else:
+        out[2 * j - 1] = 2.0 * z.real
+        out[2 * j] = -2.0 * z.imag
+
+
+@njit(cache=True)
 def _to_complex(C, H):
     """c_l, l = -H..H (index l + H), of the real series C (piecewise.to_complex)."""
     out = np.empty(2 * H + 1, np.complex128)
@@ -268,17 +285,10 @@ def _pw_project(Cs, Cv, Cw, S, B, pa, pb, pc, has_c, jumps, H, J, jac, dw, Fout,
     for j in range(J + 1):
         acc = ABG[0, j]
         for l in range(-H, H + 1):
-            d = j - l
-            bd = ABG[1, d] if d >= 0 else np.conj(ABG[1, -d])
-            acc += bd * cs[l + H]
+            acc += _coefficient(ABG, 1, j - l) * cs[l + H]
             if has_c:
-                gd = ABG[2, d] if d >= 0 else np.conj(ABG[2, -d])
-                acc += gd * cv[l + H]
-        if j == 0:
-            Fout[0] = acc.real
-        else:
-            Fout[2 * j - 1] = 2.0 * acc.real
-            Fout[2 * j] = -2.0 * acc.imag
+                acc += _coefficient(ABG, 2, j - l) * cv[l + H]
+        _put_real(Fout, j, acc)
     if dw:
         for q in range(m):
             Fwout[q] = 0.0
@@ -287,14 +297,8 @@ def _pw_project(Cs, Cv, Cw, S, B, pa, pb, pc, has_c, jumps, H, J, jac, dw, Fout,
             for j in range(H + 1):
                 acc = 0j
                 for l in range(-H, H + 1):
-                    d = j - l
-                    gd = ABG[2, d] if d >= 0 else np.conj(ABG[2, -d])
-                    acc += gd * cw[l + H]
-                if j == 0:
-                    Fwout[0] = acc.real
-                else:
-                    Fwout[2 * j - 1] = 2.0 * acc.real
-                    Fwout[2 * j] = -2.0 * acc.imag
+                    acc += _coefficient(ABG, 2, j - l) * cw[l + H]
+                _put_real(Fwout, j, acc)
     has_jump = False
     if jac:
         for j in range(2 * H + 1):
